@@ -1,0 +1,423 @@
+/*
+ * hertz._kernel -- the contact-ellipse solver, one element at a time.
+ *
+ * Problem (Hokada, Iizuka & Takada, arXiv 2508.06967, eq. (alpha_lambda_relation)):
+ * given the curvature ratio alpha = rho_x / rho_y >= 1, find the elliptic
+ * parameter m = 1 - 1/lambda^2 (p = 1 - m = 1/lambda^2) with
+ *
+ *     alpha = B(m) / (p D(m)),                                          (1)
+ *
+ * where B = (E - pK)/m and D = (K - E)/m are Fukushima's associate complete
+ * elliptic integrals (K = B + D, E = B + pD).  Eq. (1) is the seed's
+ * F(nu) = (alpha + 1)(1 - nu)K - [1 + alpha(1 - nu)]E = 0 divided by its
+ * trivial root: F = m (alpha p D - B).
+ *
+ * The seed's Bailey (Halley) step, eq. (recurrence),
+ *
+ *     x_{n+1} = x_n - f / (f' - f f'' / (2 f')),                        (2)
+ *
+ * is applied to f(x) = ln(B / (p D)) - ln(alpha) in the variable x = ln p
+ * instead of F(nu).  Deflating the root m = 0, taking logarithms and using
+ * x instead of nu keep every quantity well scaled from alpha = 1 + 2^-52
+ * (m ~ 3e-16) to alpha ~ 1e19 (p ~ 1e-21): f' lies in [-1, -3/4], so the
+ * step never divides by a vanishing derivative (the seed's F' ~ (alpha-1)pi/4
+ * and its 0/0 in F'' near alpha = 1 are gone).
+ *
+ * Start: a piecewise polynomial in alpha (generated, see
+ * tools/generate_coefficients.py; the piece is read from the bits of alpha,
+ * no logarithm) accurate to 6e-8 in x, so that one step of (2) leaves an
+ * error far below the double rounding.  B and D are evaluated
+ * once, at the start, by our own routine (two Landen steps and a short
+ * Maclaurin series for m <= 0.95, the logarithmic series in p above), which has
+ * no cancellation anywhere; K and E at the root are then obtained from a
+ * second-order Taylor update of D instead of a second evaluation.
+ *
+ * For alpha >= 2^START_BINADES (1.8e19) the root satisfies
+ * lambda^2 = alpha (L - 1), L = ln(4 lambda), to a relative O(1/alpha) and is
+ * solved directly.  alpha < 1 uses lambda(alpha) = 1/lambda(1/alpha) without
+ * forming 1/alpha.
+ */
+#define PY_SSIZE_T_CLEAN
+#include <Python.h>
+#include <math.h>
+#include <stdint.h>
+#include <string.h>
+
+#include "_coefficients.h"
+
+static inline double
+horner(const double *c, int degree, double x)
+{
+    double r = c[degree];
+    for (int i = degree - 1; i >= 0; --i) {
+        r = r * x + c[i];
+    }
+    return r;
+}
+
+/* B(m), D(m) and V(m) = (B - pD)/m = 2p dD/dm for 0 < m < 1, p = 1 - m, at
+ * n <= BLOCK points.  m and p are passed separately so that each can carry
+ * full relative precision (m near 0, p near 0). */
+#define BLOCK 64
+
+static void
+associate_integrals(Py_ssize_t n, const double *m, const double *p,
+                    double *B, double *D, double *V)
+{
+    double l1[BLOCK];
+    /* DLMF 19.12.1-2 rearranged, L = ln(4/sqrt(p)):
+     *   mD = Q_D (L - 1) + P_D,  mB = Q_B L + P_B  (valid for p < P_LOG_MAX).
+     * Evaluated for every element (the loop vectorises); the Landen branch
+     * below overwrites the elements with m <= M_LANDEN_MAX. */
+    for (Py_ssize_t i = 0; i < n; ++i) {
+        l1[i] = LN4_MINUS_1 - 0.5 * log(p[i]);
+    }
+    for (Py_ssize_t i = 0; i < n; ++i) {
+        double x = p[i];
+        double md = horner(BD_LOG_QD, LOG_DEGREE, x) * l1[i] + horner(BD_LOG_PD, LOG_DEGREE, x);
+        double mb = horner(BD_LOG_QB, LOG_DEGREE, x) * (l1[i] + 1.0)
+                    + horner(BD_LOG_PB, LOG_DEGREE, x);
+        double im = 1.0 / m[i];
+        D[i] = md * im;
+        B[i] = mb * im;
+        V[i] = (mb - x * md) * im * im;
+    }
+    for (Py_ssize_t i = 0; i < n; ++i) {
+        if (m[i] > M_LANDEN_MAX) {
+            continue;
+        }
+        /* Descending Landen transformation, k' = sqrt(p), k1 = (1 - k')/(1 + k'):
+         *   D(m) = (B1 + (1 + k1) D1)/(1 + k'),  B(m) = (B1 + (1 - k1) D1)/(1 + k'),
+         *   (D - B)/m = 2 D1 / (1 + k')^3,
+         * with B1, D1 at m1 = k1^2 and p1 = 4k'/(1 + k')^2.  Every term is
+         * positive: no cancellation.  Two steps take m <= 0.95 to m2 < 0.017. */
+        double kp = sqrt(p[i]);
+        double s1 = 1.0 + kp;
+        double k1 = m[i] / (s1 * s1);
+        double s2 = 1.0 + 2.0 * sqrt(kp) / s1;
+        double k2 = k1 * k1 / (s2 * s2);
+        double m2 = k2 * k2;
+        double b2 = horner(BD_SMALL_B, SMALL_DEGREE, m2);
+        double d2 = horner(BD_SMALL_D, SMALL_DEGREE, m2);
+        double d1 = (b2 + (1.0 + k2) * d2) / s2;
+        double b1 = (b2 + (1.0 - k2) * d2) / s2;
+        double is1 = 1.0 / s1;
+        D[i] = (b1 + (1.0 + k1) * d1) * is1;
+        B[i] = (b1 + (1.0 - k1) * d1) * is1;
+        V[i] = D[i] - 2.0 * d1 * is1 * is1 * is1;
+    }
+}
+
+/* Large alpha: lambda^2 = alpha (L - 1), L = ln 4 + ln lambda (relative error
+ * O(1/alpha) < 1e-19 here); K = L, E = 1 to the same order. */
+static void
+solve_asymptotic(double alpha, double t, int flip, double *lam, double *K)
+{
+    double L = LN4 + 0.5 * (t + log(0.5 * t));
+    for (int i = 0; i < 3; ++i) {
+        double f = L - LN4 - 0.5 * (t + log(L - 1.0));
+        L -= f / (1.0 - 0.5 / (L - 1.0));
+    }
+    *lam = flip ? sqrt(alpha) / sqrt(L - 1.0) : sqrt(alpha) * sqrt(L - 1.0);
+    *K = L;
+}
+
+/* Elements are processed in blocks of BLOCK, one stage at a time, so that
+ * the processor overlaps independent elements (and vectorises the
+ * branch-free stages) instead of waiting on the dependency chain of one. */
+
+/* Solve n <= BLOCK elements.  Returns -1, or the index of the first alpha
+ * that is not a positive number (outputs are then incomplete). */
+static Py_ssize_t
+solve_block(const double *alpha, Py_ssize_t n, int iterations,
+            double *lam, double *mo, double *ko, double *eo)
+{
+    double m[BLOCK], p[BLOCK], B[BLOCK], D[BLOCK], V[BLOCK], dm[BLOCK], inv_m[BLOCK];
+    unsigned char done[BLOCK];
+
+    /* Stage 1: checks, closed-form cases, start. */
+    for (Py_ssize_t i = 0; i < n; ++i) {
+        double a = alpha[i];
+        if (!(a > 0.0)) {
+            return i;
+        }
+        done[i] = 1;
+        m[i] = p[i] = 0.5; /* placeholders for the closed-form cases */
+        dm[i] = 0.0;
+        if (a == 1.0) {
+            lam[i] = 1.0;
+            if (mo) mo[i] = 0.0;
+            if (ko) ko[i] = PI_2;
+            if (eo) eo[i] = PI_2;
+            continue;
+        }
+        if (isinf(a)) {
+            lam[i] = INFINITY;
+            if (mo) mo[i] = 1.0;
+            if (ko) ko[i] = INFINITY;
+            if (eo) eo[i] = 1.0;
+            continue;
+        }
+        int flip = a < 1.0;
+        double ap = flip ? 1.0 / a : a; /* alpha' = max(alpha, 1/alpha) */
+        uint64_t bits;
+        memcpy(&bits, &ap, sizeof bits);
+        int e = (int)(bits >> 52) - 1023; /* ap = 2^e f, f in [1, 2) */
+        if (e >= START_BINADES) {
+            double K;
+            solve_asymptotic(a, flip ? -log(a) : log(a), flip, &lam[i], &K);
+            if (mo) mo[i] = 1.0;
+            if (ko) ko[i] = K;
+            if (eo) eo[i] = 1.0;
+            continue;
+        }
+        done[i] = 0;
+        /* h = lambda^2/alpha' = 1 + (alpha' - 1) r(alpha'), then
+         * p = 1/(alpha' h) and m = (alpha' h - 1) p = eps (1 + alpha' r) p with
+         * eps = alpha' - 1 formed exactly from alpha, so that m keeps its
+         * relative accuracy as alpha -> 1. */
+        int k = (int)((bits >> 50) & 3);
+        uint64_t fbits = (bits & 0x000FFFFFFFFFFFFFull) | 0x3FF0000000000000ull;
+        double f;
+        memcpy(&f, &fbits, sizeof f);
+        double r = horner(START_R[START_SPLIT * e + k], START_DEGREE, 8.0 * f - (9.0 + 2.0 * k));
+        double eps = flip ? (1.0 - a) * ap : a - 1.0;
+        double h = 1.0 + eps * r;
+        p[i] = 1.0 / (ap * h);
+        m[i] = eps * (1.0 + ap * r) * p[i];
+    }
+
+    for (int it = 0; it < iterations; ++it) {
+        /* Stage 2: B, D, V at the current point. */
+        associate_integrals(n, m, p, B, D, V);
+        /* Stage 3: one Bailey step, eq. (2), on f(x) = ln(B/(p D alpha')). */
+        for (Py_ssize_t i = 0; i < n; ++i) {
+            double a = alpha[i], mi = m[i], pi = p[i], b = B[i], d = D[i], v = V[i];
+            int flip = a < 1.0;
+            /* w = B/(p D alpha') - 1, for small m from R - 1 = m V/(p D).
+             * All candidates are computed and then selected, so that the
+             * loop has no branches and vectorises. */
+            double pd = pi * d;
+            double den = flip ? pd : a * pd;
+            double num_small = flip ? mi * v * a - (1.0 - a) * pd : mi * v - (a - 1.0) * pd;
+            double num_large = (flip ? b * a : b) - den;
+            double num = mi <= M_LANDEN_MAX ? num_small : num_large;
+            double w = num / den;
+            /* |w| < 1e-7 from the start (6e-8 in x): three terms of log1p. */
+            double phi = w * (1.0 - w * (0.5 - w * (1.0 / 3.0)));
+            /* f' = s and f'' = s2 in x = ln p, from dB/dm = (D - B)/(2m) and
+             * dD/dm = V/(2p); they only scale the small step. */
+            double rbdm = 1.0 / (b * d * mi);
+            double s1 = 0.5 * (v * (b + pd) - pd * d) * rbdm * mi; /* f' + 1 */
+            double s = s1 - 1.0;
+            double s2 = 0.5 * (b * b * s1 + s * pd * d + 2.0 * pi * s1 * b * d) * rbdm;
+            double step = 2.0 * s * phi / (2.0 * s * s - phi * s2);
+            /* p (1 - exp(-step)), |step| < 1e-7 */
+            double dmi = pi * step * (1.0 - 0.5 * step * (1.0 - step * (1.0 / 3.0)));
+            double h = done[i] ? 0.0 : dmi;
+            dm[i] = h;
+            inv_m[i] = rbdm * b * d;
+            m[i] = mi + h;
+            p[i] = pi - h;
+        }
+    }
+
+    if (iterations == 0 && (ko || eo)) {
+        associate_integrals(n, m, p, B, D, V);
+    }
+
+    /* Stage 4: outputs (elements solved in stage 1 keep their values). */
+    for (Py_ssize_t i = 0; i < n; ++i) {
+        double mi = m[i], pi = p[i];
+        double kp = sqrt(pi);
+        double near_one = 1.0 + mi / (kp * (1.0 + kp)); /* keeps lambda - 1 accurate */
+        double far = sqrt(1.0 / pi);
+        double l = alpha[i] < 1.0 ? kp : (mi < 0.5 ? near_one : far);
+        lam[i] = done[i] ? lam[i] : l;
+    }
+    if (mo) {
+        for (Py_ssize_t i = 0; i < n; ++i) {
+            mo[i] = done[i] ? mo[i] : m[i];
+        }
+    }
+    if (!ko && !eo) {
+        return -1;
+    }
+    /* K, E at the root come from D, Taylor-updated to second order about the
+     * last evaluation point (dD/dm = V/(2p)), and eq. (1): B = alpha' p D, so
+     * K = D (1 + alpha' p), E = p D (1 + alpha').  Without a step (iterations
+     * = 0) they are those of the start. */
+    double K[BLOCK], E[BLOCK];
+    for (Py_ssize_t i = 0; i < n; ++i) {
+        double a = alpha[i], pi = p[i], h = dm[i], d = D[i], v = V[i];
+        double p0 = pi + h, ip0 = 1.0 / p0;
+        double d1 = 0.5 * v * ip0;
+        double d2 = 0.5 * (1.5 * p0 * d - 2.0 * p0 * v + (m[i] - h) * v) * ip0 * ip0 * inv_m[i];
+        double droot = d + h * (d1 + 0.5 * h * d2);
+        double ia = 1.0 / a;
+        int flip = a < 1.0;
+        K[i] = flip ? droot * (1.0 + pi * ia) : droot * (1.0 + a * pi);
+        E[i] = flip ? pi * droot * (1.0 + a) * ia : pi * droot * (1.0 + a);
+        if (iterations == 0) {
+            K[i] = B[i] + d;
+            E[i] = B[i] + pi * d;
+        }
+    }
+    for (Py_ssize_t i = 0; i < n; ++i) {
+        if (ko) ko[i] = done[i] ? ko[i] : K[i];
+        if (eo) eo[i] = done[i] ? eo[i] : E[i];
+    }
+    return -1;
+}
+
+/* ---------------------------------------------------------------- Python API */
+
+static int
+get_output(PyObject *obj, Py_buffer *view, Py_ssize_t n, const char *name)
+{
+    if (obj == Py_None) {
+        view->buf = NULL;
+        view->obj = NULL;
+        return 0;
+    }
+    if (PyObject_GetBuffer(obj, view, PyBUF_WRITABLE | PyBUF_C_CONTIGUOUS) < 0) {
+        return -1;
+    }
+    if (view->len != n * (Py_ssize_t)sizeof(double)) {
+        PyErr_Format(PyExc_ValueError, "%s: expected %zd doubles", name, n);
+        PyBuffer_Release(view);
+        view->buf = NULL;
+        view->obj = NULL;
+        return -1;
+    }
+    return 0;
+}
+
+static void
+release(Py_buffer *views, int count)
+{
+    for (int i = 0; i < count; ++i) {
+        if (views[i].obj != NULL) {
+            PyBuffer_Release(&views[i]);
+        }
+    }
+}
+
+PyDoc_STRVAR(solve_doc,
+"solve(alpha, lam, m, K, E, iterations) -> int\n\n"
+"Fill lam (and m, K, E unless None) for each alpha; all are C-contiguous\n"
+"float64 buffers of one length.  Returns the index of the first alpha that\n"
+"is not a positive number, or -1.  Private: use hertz.ellipticity.");
+
+static PyObject *
+py_solve(PyObject *self, PyObject *args)
+{
+    Py_buffer in;
+    PyObject *objs[4];
+    Py_buffer out[4] = {{0}};
+    int iterations;
+    if (!PyArg_ParseTuple(args, "y*OOOOi", &in, &objs[0], &objs[1], &objs[2], &objs[3],
+                          &iterations)) {
+        return NULL;
+    }
+    Py_ssize_t n = in.len / (Py_ssize_t)sizeof(double);
+    static const char *names[4] = {"lam", "m", "K", "E"};
+    for (int i = 0; i < 4; ++i) {
+        if (get_output(objs[i], &out[i], n, names[i]) < 0) {
+            release(out, i);
+            PyBuffer_Release(&in);
+            return NULL;
+        }
+    }
+    if (out[0].buf == NULL || iterations < 0) {
+        release(out, 4);
+        PyBuffer_Release(&in);
+        PyErr_SetString(PyExc_ValueError, "lam is required and iterations must be >= 0");
+        return NULL;
+    }
+    const double *alpha = (const double *)in.buf;
+    double *lam = out[0].buf, *mo = out[1].buf, *ko = out[2].buf, *eo = out[3].buf;
+    Py_ssize_t bad = -1;
+    Py_BEGIN_ALLOW_THREADS
+    for (Py_ssize_t i = 0; i < n; i += BLOCK) {
+        Py_ssize_t len = n - i < BLOCK ? n - i : BLOCK;
+        Py_ssize_t r = solve_block(alpha + i, len, iterations, lam + i, mo ? mo + i : NULL,
+                                   ko ? ko + i : NULL, eo ? eo + i : NULL);
+        if (r >= 0) {
+            bad = i + r;
+            break;
+        }
+    }
+    Py_END_ALLOW_THREADS
+    release(out, 4);
+    PyBuffer_Release(&in);
+    return PyLong_FromSsize_t(bad);
+}
+
+PyDoc_STRVAR(assoc_doc,
+"associate_integrals(m, p, B, D, V) -> None\n\n"
+"Fill B(m), D(m) and V(m) = (B - pD)/m for 0 < m < 1 with p = 1 - m given\n"
+"separately (so that either can carry full relative precision).  Private:\n"
+"exposed for the accuracy tests of the special-function layer.");
+
+static PyObject *
+py_associate_integrals(PyObject *self, PyObject *args)
+{
+    Py_buffer mb, pb;
+    PyObject *objs[3];
+    Py_buffer out[3] = {{0}};
+    if (!PyArg_ParseTuple(args, "y*y*OOO", &mb, &pb, &objs[0], &objs[1], &objs[2])) {
+        return NULL;
+    }
+    Py_ssize_t n = mb.len / (Py_ssize_t)sizeof(double);
+    static const char *names[3] = {"B", "D", "V"};
+    int ok = pb.len == mb.len;
+    for (int i = 0; ok && i < 3; ++i) {
+        if (get_output(objs[i], &out[i], n, names[i]) < 0 || out[i].buf == NULL) {
+            release(out, i + 1);
+            PyBuffer_Release(&mb);
+            PyBuffer_Release(&pb);
+            if (!PyErr_Occurred()) {
+                PyErr_Format(PyExc_ValueError, "%s is required", names[i]);
+            }
+            return NULL;
+        }
+    }
+    if (!ok) {
+        PyBuffer_Release(&mb);
+        PyBuffer_Release(&pb);
+        PyErr_SetString(PyExc_ValueError, "m and p must have the same length");
+        return NULL;
+    }
+    const double *m = mb.buf, *p = pb.buf;
+    double *B = out[0].buf, *D = out[1].buf, *V = out[2].buf;
+    for (Py_ssize_t i = 0; i < n; i += BLOCK) {
+        Py_ssize_t len = n - i < BLOCK ? n - i : BLOCK;
+        associate_integrals(len, m + i, p + i, B + i, D + i, V + i);
+    }
+    release(out, 3);
+    PyBuffer_Release(&mb);
+    PyBuffer_Release(&pb);
+    Py_RETURN_NONE;
+}
+
+static PyMethodDef methods[] = {
+    {"solve", py_solve, METH_VARARGS, solve_doc},
+    {"associate_integrals", py_associate_integrals, METH_VARARGS, assoc_doc},
+    {NULL, NULL, 0, NULL},
+};
+
+static struct PyModuleDef module = {
+    PyModuleDef_HEAD_INIT, "_kernel",
+    "Compiled core of hertz.ellipticity (private).", -1, methods,
+};
+
+PyMODINIT_FUNC
+PyInit__kernel(void)
+{
+    PyObject *mod = PyModule_Create(&module);
+    if (mod == NULL) {
+        return NULL;
+    }
+    return mod;
+}
