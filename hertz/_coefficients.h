@@ -16,7 +16,7 @@
 
 /* Largest parameter after two Landen steps from m = M_LANDEN_MAX: 0.0164063;
    truncation error of the Maclaurin series there: 4.5e-18. */
-/* B(m) = (pi/4) 2F1(1/2, 1/2; 2; m), coefficients of m^0 .. m^8 */
+/* B(m) = (pi/4) 2F1(1/2, 1/2; 2; m), m^0 .. m^8 */
 static const double BD_SMALL_B[9] = {
     0.78539816339744828,
     0.098174770424681035,
@@ -28,7 +28,7 @@ static const double BD_SMALL_B[9] = {
     0.0043077904996225175,
     0.0033654613278300918,
 };
-/* D(m) = (pi/4) 2F1(1/2, 3/2; 2; m), coefficients of m^0 .. m^8 */
+/* D(m) = (pi/4) 2F1(1/2, 3/2; 2; m), m^0 .. m^8 */
 static const double BD_SMALL_D[9] = {
     0.78539816339744828,
     0.2945243112740431,
@@ -43,7 +43,7 @@ static const double BD_SMALL_D[9] = {
 
 /* Near m = 1, p = 1 - m, L = ln(4 / sqrt(p)):
      m D = BD_LOG_QD(p) (L - 1) + BD_LOG_PD(p),   m B = BD_LOG_QB(p) L + BD_LOG_PB(p).
-   Coefficients of p^0 .. p^7; interpolation error on [0, P_LOG_MAX]: 5e-18. */
+   Coefficients of p^0 .. p^7; largest error on [0, P_LOG_MAX]: 1.6e-17. */
 /* Q_D = Q_K - Q_E */
 static const double BD_LOG_QD[8] = {
     1,
@@ -68,14 +68,14 @@ static const double BD_LOG_PD[8] = {
 };
 /* Q_B = Q_E - p Q_K */
 static const double BD_LOG_QB[8] = {
-    3.8326758117388702e-18,
-    -0.50000000000000977,
-    -0.062499999995886804,
-    -0.02343750065611553,
-    -0.012206979959256521,
-    -0.0074789767734212472,
-    -0.0049963014165258345,
-    -0.0042383213232488658,
+    0,
+    -0.50000000000000033,
+    -0.062499999999411124,
+    -0.023437500188054638,
+    -0.012207008775496634,
+    -0.0074780817024142901,
+    -0.0050099253402304082,
+    -0.0041575419499528046,
 };
 /* P_B = P_E - p P_K */
 static const double BD_LOG_PB[8] = {

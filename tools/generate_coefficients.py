@@ -149,6 +149,8 @@ def main():
     series = (("Q_D", q_d), ("P_D", p_d), ("Q_B", q_b), ("P_B", p_b))
     log_polys = {name: cheb_interp(series_fn(c), 0, P_LOG_MAX, LOG_DEGREE)
                  for name, c in series}
+    # Q_B(0) = 0 must hold exactly: it multiplies L, which reaches 350 as p -> 0.
+    log_polys["Q_B"] = [mp.mpf(0)] + cheb_interp(series_fn(q_b[1:]), 0, P_LOG_MAX, LOG_DEGREE - 1)
     grid = [P_LOG_MAX * k / 200 for k in range(201)]
     log_err = max(abs(series_fn(log_polys[name])(x) - series_fn(c)(x))
                   for name, c in series for x in grid)
@@ -184,12 +186,12 @@ def main():
 
 /* Largest parameter after two Landen steps from m = M_LANDEN_MAX: {float(m2_max):.6g};
    truncation error of the Maclaurin series there: {float(tail):.2g}. */
-{c_array("BD_SMALL_B", small_b, f"B(m) = (pi/4) 2F1(1/2, 1/2; 2; m), coefficients of m^0 .. m^{SMALL_DEGREE}")}
-{c_array("BD_SMALL_D", small_d, f"D(m) = (pi/4) 2F1(1/2, 3/2; 2; m), coefficients of m^0 .. m^{SMALL_DEGREE}")}
+{c_array("BD_SMALL_B", small_b, f"B(m) = (pi/4) 2F1(1/2, 1/2; 2; m), m^0 .. m^{SMALL_DEGREE}")}
+{c_array("BD_SMALL_D", small_d, f"D(m) = (pi/4) 2F1(1/2, 3/2; 2; m), m^0 .. m^{SMALL_DEGREE}")}
 
 /* Near m = 1, p = 1 - m, L = ln(4 / sqrt(p)):
      m D = BD_LOG_QD(p) (L - 1) + BD_LOG_PD(p),   m B = BD_LOG_QB(p) L + BD_LOG_PB(p).
-   Coefficients of p^0 .. p^{LOG_DEGREE}; interpolation error on [0, P_LOG_MAX]: {float(log_err):.2g}. */
+   Coefficients of p^0 .. p^{LOG_DEGREE}; largest error on [0, P_LOG_MAX]: {float(log_err):.2g}. */
 {c_array("BD_LOG_QD", log_polys["Q_D"], "Q_D = Q_K - Q_E")}
 {c_array("BD_LOG_PD", log_polys["P_D"], "P_D = P_K - P_E + Q_D")}
 {c_array("BD_LOG_QB", log_polys["Q_B"], "Q_B = Q_E - p Q_K")}

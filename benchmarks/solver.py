@@ -1,0 +1,98 @@
+"""Accuracy and speed of hertz.ellipticity: the figures of the README's solver section.
+
+    python benchmarks/solver.py [--n 1000000] [--repeats 11]
+
+Accuracy: maximum relative error against the 50-digit mpmath table
+tests/data/reference_lambda.csv (regenerate with tests/make_reference_table.py).
+Speed: N alphas log-uniform in [1, 1e6]; every contender is timed once per
+round, rounds interleaved, and the ratio to one scipy.special.ellipk +
+ellipe pass over N parameters is taken within each round (the machine's
+speed drifts between rounds); medians over the rounds are reported.
+"""
+
+from __future__ import annotations
+
+import argparse
+import sys
+import time
+from pathlib import Path
+
+import numpy as np
+from scipy import special
+
+ROOT = Path(__file__).resolve().parents[1]
+sys.path.insert(0, str(ROOT / "tests"))
+
+from _machine import describe  # noqa: E402
+
+import hertz  # noqa: E402
+from hertz._ellipse import solve_ellipse  # noqa: E402
+
+
+def accuracy() -> dict[str, float]:
+    import mpmath as mp
+    from reference import load_table
+
+    rows = load_table()
+    alpha = np.array([r["alpha"] for r in rows])
+    out = {}
+    for iterations in (1, 0):
+        sol = solve_ellipse(alpha, iterations)
+        err = {}
+        for name, values in (("lambda", sol.ellipticity), ("m", sol.m), ("K", sol.K),
+                             ("E", sol.E)):
+            err[name] = np.array([float(abs((mp.mpf(v) - r[name]) / r[name])) if r[name] else 0.0
+                                  for v, r in zip(values, rows, strict=True)])
+        in_range = np.array([r["group"].removeprefix("recip-") in ("main", "wide", "near1")
+                             for r in rows])
+        tag = "" if iterations == 1 else " (iterations=0)"
+        out[f"lambda, 1/1e15 <= alpha <= 1e15{tag}"] = err["lambda"][in_range].max()
+        out[f"lambda, all {len(rows)} table points up to 1.8e308{tag}"] = err["lambda"].max()
+        if iterations == 1:
+            for name in ("m", "K", "E"):
+                out[f"{name} at the root, all table points"] = err[name].max()
+    return out
+
+
+def speed(n: int, repeats: int) -> dict[str, tuple[float, float]]:
+    rng = np.random.default_rng(0)
+    alpha = np.exp(rng.uniform(0.0, np.log(1e6), n))
+    m = rng.uniform(0.0, 1.0, n)
+    ball, race = hertz.Body.sphere(6e-3, 210e9, 0.3), hertz.Body(-6.2e-3, 40e-3, 210e9, 0.3)
+    loads = rng.uniform(1.0, 2000.0, n)
+    contenders = {
+        "scipy ellipk + ellipe (reference)": lambda: (special.ellipk(m), special.ellipe(m)),
+        "hertz.ellipticity": lambda: hertz.ellipticity(alpha),
+        "hertz.ellipticity, iterations=0": lambda: hertz.ellipticity(alpha, iterations=0),
+        "lambda, m, K, E (solve_ellipse)": lambda: solve_ellipse(alpha),
+        "hertz.contact, N loads": lambda: hertz.contact(ball, race, load=loads),
+    }
+    times = {k: [] for k in contenders}
+    for f in contenders.values():  # warm-up
+        f()
+    for _ in range(repeats):
+        for name, f in contenders.items():
+            t0 = time.perf_counter()
+            f()
+            times[name].append(time.perf_counter() - t0)
+    ref = np.array(times["scipy ellipk + ellipe (reference)"])
+    return {k: (np.median(v) / n * 1e9, np.median(np.array(v) / ref)) for k, v in times.items()}
+
+
+def main():
+    ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
+    ap.add_argument("--n", type=int, default=1_000_000)
+    ap.add_argument("--repeats", type=int, default=11)
+    args = ap.parse_args()
+    print(f"{describe()}, {time.strftime('%Y-%m-%d')}\n")
+    print("| maximum relative error against mpmath (50 digits) | value |\n|---|---|")
+    for name, value in accuracy().items():
+        print(f"| {name} | {value:.2e} |")
+    print(f"\n| N = {args.n:.0e}, alpha log-uniform in [1, 1e6] | ns per element (median) "
+          f"| time / (ellipk + ellipe), median of {args.repeats} rounds |\n|---|---|---|")
+    for name, (ns, ratio) in speed(args.n, args.repeats).items():
+        print(f"| {name} | {ns:.1f} | {ratio:.2f} |")
+
+
+if __name__ == "__main__":
+    main()

@@ -1,0 +1,1 @@
+"""Finite-element validation of hertz (placeholder until its own issue)."""

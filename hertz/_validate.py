@@ -1,0 +1,65 @@
+"""Conversion and checking of user input, done once at the public boundary.
+
+Internal code receives clean float64 arrays and never re-checks them.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+
+def as_float_array(value, name: str) -> np.ndarray:
+    """Convert ``value`` to a float64 ndarray, or raise TypeError naming it.
+
+    Integers and floats of any width are accepted; booleans, complex numbers,
+    strings and objects are not.
+    """
+    try:
+        arr = np.asarray(value)
+    except Exception as exc:  # ragged nested sequences and the like
+        raise TypeError(f"{name} must be a real number or an array of them: {exc}") from None
+    if arr.dtype.kind not in "iuf":
+        raise TypeError(
+            f"{name} must be a real number or an array of them, got {_describe(value, arr)}"
+        )
+    return arr.astype(np.float64, copy=False)
+
+
+def index_text(shape: tuple[int, ...], flat_index: int) -> str:
+    """`` at index i`` (or a tuple for N-d shapes) for element ``flat_index``; '' for 0-d."""
+    if not shape:
+        return ""
+    index = np.unravel_index(flat_index, shape)
+    index = int(index[0]) if len(index) == 1 else tuple(int(i) for i in index)
+    return f" at index {index}"
+
+
+def error_at(name: str, arr: np.ndarray, flat_index: int, allowed: str) -> ValueError:
+    """The ValueError for element ``flat_index`` (C order) of ``arr``."""
+    value = arr.reshape(-1)[flat_index].item()
+    return ValueError(f"{name} must be {allowed}, got {value!r}{index_text(arr.shape, flat_index)}")
+
+
+def require(name: str, arr: np.ndarray, ok: np.ndarray, allowed: str) -> None:
+    """Raise ValueError at the first element where ``ok`` is false.
+
+    ``ok`` must be false for NaN (write comparisons so that it is).
+    """
+    ok = np.broadcast_to(ok, arr.shape)
+    if not ok.all():
+        raise error_at(name, arr, int(np.argmin(ok.reshape(-1))), allowed)
+
+
+def broadcast(**arrays: np.ndarray) -> tuple[np.ndarray, ...]:
+    """Broadcast named arrays together; the error names the parameters and shapes."""
+    try:
+        return np.broadcast_arrays(*arrays.values())
+    except ValueError:
+        shapes = ", ".join(f"{k} {np.shape(v)}" for k, v in arrays.items())
+        raise ValueError(f"shapes do not broadcast together: {shapes}") from None
+
+
+def _describe(value, arr: np.ndarray) -> str:
+    if arr.ndim == 0:
+        return f"{type(value).__name__} {value!r}"
+    return f"an array of dtype {arr.dtype}"

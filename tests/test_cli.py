@@ -1,0 +1,99 @@
+"""The hertz command: default scene, --json, scene files, one-line errors with status 2."""
+
+import json
+import shutil
+import subprocess
+import sys
+
+import pytest
+
+import hertz
+from hertz.cli import main
+
+
+def run(capsys, *argv):
+    status = main(list(argv))
+    out, err = capsys.readouterr()
+    return status, out, err
+
+
+def test_default_scene_table(capsys):
+    status, out, err = run(capsys)
+    assert status == 0 and err == ""
+    assert "bearing ball on inner race" in out
+    for label in ("semi-major axis a", "semi-minor axis b", "peak pressure p0", "approach delta",
+                  "stiffness", " mm", " GPa"):
+        assert label in out
+
+
+def test_default_scene_json_matches_the_api(capsys):
+    status, out, _ = run(capsys, "--json")
+    data = json.loads(out)
+    c = hertz.contact(hertz.Body(6e-3, 6e-3, 210e9, 0.3), hertz.Body(-6.2e-3, 40e-3, 210e9, 0.3),
+                      load=1500.0)
+    assert status == 0
+    for key in ("a", "b", "p0", "delta", "load", "alpha", "e_star"):
+        assert data[key] == getattr(c, key)
+
+
+def test_options_override_the_scene(capsys):
+    _, out, _ = run(capsys, "--json", "--load", "800", "--r2x", "inf", "--r2y", "inf",
+                    "--e2", "70e9", "--nu2", "0.33")
+    data = json.loads(out)
+    c = hertz.contact(hertz.Body.sphere(6e-3, 210e9, 0.3), hertz.Body.plane(70e9, 0.33), load=800.0)
+    assert data["a"] == c.a and data["p0"] == c.p0
+
+
+def test_approach_and_angle(capsys):
+    _, out, _ = run(capsys, "--json", "--approach", "1e-5", "--angle-deg", "30")
+    data = json.loads(out)
+    c = hertz.contact(hertz.Body(6e-3, 6e-3, 210e9, 0.3), hertz.Body(-6.2e-3, 40e-3, 210e9, 0.3),
+                      approach=1e-5, angle=0.5235987755982988)
+    assert data["load"] == pytest.approx(c.load, rel=1e-15)
+
+
+def test_scene_file(tmp_path, capsys):
+    scene = tmp_path / "crossed.toml"
+    scene.write_text('name = "crossed cylinders"\nload = 100.0\nangle_deg = 90.0\n'
+                     '[body1]\nRx = 0.01\nRy = "inf"\n[body2]\nRx = 0.01\nRy = "inf"\n')
+    status, out, _ = run(capsys, "--scene", str(scene))
+    assert status == 0 and "crossed cylinders" in out
+    _, out, _ = run(capsys, "--scene", str(scene), "--json")
+    c = hertz.contact(hertz.Body.cylinder(0.01, 210e9, 0.3), hertz.Body.cylinder(0.01, 210e9, 0.3),
+                      load=100.0, angle=1.5707963267948966)
+    assert json.loads(out)["a"] == pytest.approx(c.a, rel=1e-15)
+
+
+@pytest.mark.parametrize("argv, message", [
+    (["--load=-5"], "load must be a finite value >= 0"),
+    (["--load", "abc"], "not a number"),
+    (["--nu1", "0.7"], "nu must be a Poisson's ratio"),
+    (["--r1x", "0"], "Rx must be a nonzero radius"),
+    (["--bogus"], "unrecognized arguments"),
+    (["--load", "1", "--approach", "1e-6"], "not allowed with"),
+    (["--scene", "/no/such/file.toml"], "cannot read scene file"),
+    (["--r2x", "inf", "--r2y", "inf", "--r1y", "inf"], "line contact"),
+])
+def test_bad_input_is_one_line_and_status_2(capsys, argv, message):
+    status, out, err = run(capsys, *argv)
+    assert status == 2 and out == ""
+    assert err.count("\n") == 1 and err.startswith("hertz: error: ") and message in err
+
+
+def test_bad_scene_file(tmp_path, capsys):
+    bad = tmp_path / "bad.toml"
+    bad.write_text("load = [\n")
+    assert run(capsys, "--scene", str(bad))[0] == 2
+    bad.write_text("lode = 5\n")
+    status, _, err = run(capsys, "--scene", str(bad))
+    assert status == 2 and "unknown key 'lode'" in err
+
+
+def test_console_script_runs_without_traceback():
+    exe = shutil.which("hertz")
+    cmd = [exe] if exe else [sys.executable, "-m", "hertz.cli"]
+    ok = subprocess.run(cmd, capture_output=True, text=True)
+    assert ok.returncode == 0 and "semi-major axis a" in ok.stdout
+    bad = subprocess.run(cmd + ["--load=-5"], capture_output=True, text=True)
+    assert bad.returncode == 2 and "Traceback" not in bad.stderr
+    assert bad.stderr.strip().count("\n") == 0
