@@ -60,12 +60,17 @@ def speed(n: int, repeats: int) -> dict[str, tuple[float, float]]:
     m = rng.uniform(0.0, 1.0, n)
     ball, race = hertz.Body.sphere(6e-3, 210e9, 0.3), hertz.Body(-6.2e-3, 40e-3, 210e9, 0.3)
     loads = rng.uniform(1.0, 2000.0, n)
+    balls = hertz.Body.sphere(rng.uniform(2e-3, 2e-2, n), 210e9, 0.3)
+    races = hertz.Body(-rng.uniform(2.05e-2, 3e-2, n), rng.uniform(2e-2, 1e-1, n), 210e9, 0.3)
     contenders = {
         "scipy ellipk + ellipe (reference)": lambda: (special.ellipk(m), special.ellipe(m)),
         "hertz.ellipticity": lambda: hertz.ellipticity(alpha),
         "hertz.ellipticity, iterations=0": lambda: hertz.ellipticity(alpha, iterations=0),
         "lambda, m, K, E (solve_ellipse)": lambda: solve_ellipse(alpha),
-        "hertz.contact, N loads": lambda: hertz.contact(ball, race, load=loads),
+        "hertz.contact, one geometry, N loads": lambda: hertz.contact(ball, race, load=loads),
+        "hertz.contact, N geometries and loads": lambda: hertz.contact(balls, races, load=loads),
+        "hertz.contact, N geometries, angle 0.3 rad":
+            lambda: hertz.contact(balls, races, load=loads, angle=0.3),
     }
     times = {k: [] for k in contenders}
     for f in contenders.values():  # warm-up

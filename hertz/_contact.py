@@ -18,7 +18,7 @@ import numpy as np
 
 from ._ellipse import solve_ellipse
 from ._geometry import relative_curvature
-from ._validate import as_float_array, broadcast, index_text, require
+from ._validate import as_float_array, broadcast_shape, index_text, require
 
 __all__ = ["Body", "Contact", "LineContact", "contact", "line_contact"]
 
@@ -231,17 +231,20 @@ def _nonnegative(value, name: str, unit: str) -> np.ndarray:
 
 
 def _curvatures_and_moduli(body1, body2, angle, **extra):
+    """Relative curvatures and E*, each on the broadcast shape of its own inputs only
+    (one geometry with a million loads is solved once), and the full result shape."""
     body1 = _check_body(body1, "body1")
     body2 = _check_body(body2, "body2")
     ang = as_float_array(angle, "angle")
     require("angle", ang, np.isfinite(ang), "a finite angle in rad")
-    arrays = broadcast(**{"body1.Rx": body1.Rx, "body1.Ry": body1.Ry, "body2.Rx": body2.Rx,
-                          "body2.Ry": body2.Ry, "body1.E": body1.E, "body1.nu": body1.nu,
-                          "body2.E": body2.E, "body2.nu": body2.nu, "angle": ang, **extra})
-    r1x, r1y, r2x, r2y, e1, nu1, e2, nu2, ang, *rest = arrays
-    curv = relative_curvature(r1x, r1y, r2x, r2y, ang)
+    geometry = {"body1.Rx": body1.Rx, "body1.Ry": body1.Ry, "body2.Rx": body2.Rx,
+                "body2.Ry": body2.Ry, "angle": ang}
+    moduli = {"body1.E": body1.E, "body1.nu": body1.nu, "body2.E": body2.E, "body2.nu": body2.nu}
+    shape = broadcast_shape(**geometry, **moduli, **extra)
+    curv = relative_curvature(*(np.asarray(v, dtype=np.float64) for v in geometry.values()))
+    e1, nu1, e2, nu2 = (np.asarray(v, dtype=np.float64) for v in moduli.values())
     e_star = 1.0 / ((1.0 - nu1 * nu1) / e1 + (1.0 - nu2 * nu2) / e2)
-    return curv, e_star, rest
+    return curv, e_star, shape
 
 
 def _no_contact(rho_x: np.ndarray, rho_y: np.ndarray) -> ValueError | None:
@@ -315,7 +318,8 @@ def contact(body1: Body, body2: Body, load=None, angle=0.0, *, approach=None) ->
         given = {"load": _nonnegative(load, "load", "N")}
     else:
         given = {"approach": _nonnegative(approach, "approach", "m")}
-    curv, e_star, (value,) = _curvatures_and_moduli(body1, body2, angle, **given)
+    curv, e_star, shape = _curvatures_and_moduli(body1, body2, angle, **given)
+    (value,) = given.values()
     err = _no_contact(curv.rho_x, curv.rho_y)
     if err is not None:
         raise err
@@ -340,7 +344,7 @@ def contact(body1: Body, body2: Body, load=None, angle=0.0, *, approach=None) ->
         e_star=e_star, rho_x=curv.rho_x, rho_y=curv.rho_y, rho_sum=rho_sum,
         major_axis_angle=curv.major_axis_angle, load=P, p0=p0, p_mean=p0 * (2.0 / 3.0),
         area=np.pi * a * b, delta=delta, stiffness=1.5 * c_load * np.sqrt(delta))
-    return Contact(**{k: _scalar_or_array(np.asarray(v)) for k, v in fields.items()})
+    return Contact(**{k: _scalar_or_array(np.broadcast_to(v, shape)) for k, v in fields.items()})
 
 
 def line_contact(body1: Body, body2: Body, load_per_length) -> LineContact:
@@ -368,7 +372,7 @@ def line_contact(body1: Body, body2: Body, load_per_length) -> LineContact:
     74.28 um, 0.8571 GPa
     """
     load = _nonnegative(load_per_length, "load_per_length", "N/m")
-    curv, e_star, (load,) = _curvatures_and_moduli(body1, body2, 0.0, load_per_length=load)
+    curv, e_star, shape = _curvatures_and_moduli(body1, body2, 0.0, load_per_length=load)
     line = (curv.rho_x > 0) & (curv.rho_y == 0)
     if not line.all():
         i = int(np.argmin(line.reshape(-1)))
@@ -382,4 +386,5 @@ def line_contact(body1: Body, body2: Body, load_per_length) -> LineContact:
     p0 = np.sqrt(load * e_star * rho / np.pi)
     fields = dict(half_width=half_width, p0=p0, p_mean=0.25 * np.pi * p0,
                   load_per_length=load, e_star=e_star, rho_sum=rho)
-    return LineContact(**{k: _scalar_or_array(np.asarray(v)) for k, v in fields.items()})
+    return LineContact(**{k: _scalar_or_array(np.broadcast_to(v, shape))
+                          for k, v in fields.items()})

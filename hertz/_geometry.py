@@ -47,30 +47,41 @@ def _pair_sum(ra: np.ndarray, rb: np.ndarray) -> np.ndarray:
 def relative_curvature(r1x, r1y, r2x, r2y, angle) -> RelativeCurvature:
     """Principal relative curvatures of two bodies, their principal planes at ``angle``.
 
-    All arguments are float64 arrays of one shape: the principal radii of body
-    1 and body 2 [m] (``inf`` flat, negative concave) and the angle [rad]
-    from body 1's x axis to body 2's x axis.  ``major_axis_angle`` is the
-    angle from body 1's x axis to the direction of rho_y (the major axis of
-    the contact ellipse), in (-pi/2, pi/2]; 0 for a circular contact.
+    The arguments are float64 arrays that broadcast together: the principal
+    radii of body 1 and body 2 [m] (``inf`` flat, negative concave) and the
+    angle [rad] from body 1's x axis to body 2's x axis.  ``major_axis_angle``
+    is the angle from body 1's x axis to the direction of rho_y (the major
+    axis of the contact ellipse), in (-pi/2, pi/2]; 0 for a circular contact.
     """
+    # Trigonometry on the angle's own shape (usually a scalar).
     c, s = np.cos(angle), np.sin(angle)
+    if not np.any(s):
+        # Principal planes aligned (angle 0): the tensor is diagonal.
+        a, b = _pair_sum(r1x, r2x), _pair_sum(r1y, r2y)
+        rho_x, rho_y = np.maximum(a, b), np.minimum(a, b)
+        theta = np.where(a < b, 0.0, 0.5 * np.pi)
+        theta = np.where(a == b, 0.0, theta)
+        return RelativeCurvature(rho_x, rho_y, theta)
+    cc, ss, cs = c * c, s * s, c * s
     k1x, k1y, k2x, k2y = (_curvature(r) for r in (r1x, r1y, r2x, r2y))
     # Curvature tensor of the gap in body 1's frame: [[a, off], [off, b]].
-    a = k1x + k2x * c * c + k2y * s * s
-    b = k1y + k2x * s * s + k2y * c * c
-    off = (k2x - k2y) * c * s
+    a = k1x + k2x * cc + k2y * ss
+    b = k1y + k2x * ss + k2y * cc
+    off = (k2x - k2y) * cs
     aligned = s == 0.0
-    a = np.where(aligned, _pair_sum(r1x, r2x), a)
-    b = np.where(aligned, _pair_sum(r1y, r2y), b)
+    if np.any(aligned):
+        a = np.where(aligned, _pair_sum(r1x, r2x), a)
+        b = np.where(aligned, _pair_sum(r1y, r2y), b)
     # det = a b - off**2, expanded so that it is a sum of positive terms when
     # both bodies are convex.
-    det = (k1x * k1y + k2x * k2y + k1x * (k2x * s * s + k2y * c * c)
-           + k1y * (k2x * c * c + k2y * s * s))
-    rho_x = 0.5 * (a + b) + np.hypot(0.5 * (a - b), off)
+    det = k1x * k1y + k2x * k2y + k1x * (k2x * ss + k2y * cc) + k1y * (k2x * cc + k2y * ss)
+    half_sum, radius = 0.5 * (a + b), np.hypot(0.5 * (a - b), off)
+    rho_x = half_sum + radius
     with np.errstate(divide="ignore", invalid="ignore"):
-        rho_y = np.where(rho_x > 0, det / rho_x, 0.5 * (a + b) - np.hypot(0.5 * (a - b), off))
-    rho_x = np.where(aligned, np.maximum(a, b), rho_x)
-    rho_y = np.where(aligned, np.minimum(a, b), rho_y)
+        rho_y = np.where(rho_x > 0, det / rho_x, half_sum - radius)
+    if np.any(aligned):
+        rho_x = np.where(aligned, np.maximum(a, b), rho_x)
+        rho_y = np.where(aligned, np.minimum(a, b), rho_y)
     # Direction of rho_x is atan2(2 off, a - b)/2; the major axis is normal to it.
     theta = 0.5 * np.arctan2(2.0 * off, a - b) + 0.5 * np.pi
     theta = np.where(theta > 0.5 * np.pi, theta - np.pi, theta)

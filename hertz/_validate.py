@@ -50,10 +50,10 @@ def require(name: str, arr: np.ndarray, ok: np.ndarray, allowed: str) -> None:
         raise error_at(name, arr, int(np.argmin(ok.reshape(-1))), allowed)
 
 
-def broadcast(**arrays: np.ndarray) -> tuple[np.ndarray, ...]:
-    """Broadcast named arrays together; the error names the parameters and shapes."""
+def broadcast_shape(**arrays) -> tuple[int, ...]:
+    """The common shape of named arrays; the error names the parameters and shapes."""
     try:
-        return np.broadcast_arrays(*arrays.values())
+        return np.broadcast_shapes(*(np.shape(v) for v in arrays.values()))
     except ValueError:
         shapes = ", ".join(f"{k} {np.shape(v)}" for k, v in arrays.items())
         raise ValueError(f"shapes do not broadcast together: {shapes}") from None
