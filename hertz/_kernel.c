@@ -108,11 +108,26 @@ associate_integrals(Py_ssize_t n, const double *m, const double *p,
     }
 }
 
-/* Large alpha: lambda^2 = alpha (L - 1), L = ln 4 + ln lambda (relative error
- * O(1/alpha) < 1e-19 here); K = L, E = 1 to the same order. */
+/* alpha = 1, alpha = inf, and alpha' = max(alpha, 1/alpha) >= 2^START_BINADES,
+ * where lambda^2 = alpha' (L - 1), L = ln 4 + ln lambda (relative error
+ * O(1/alpha') < 1e-19); K = L and E = 1 to the same order, m rounds to 1. */
 static void
-solve_asymptotic(double alpha, double t, int flip, double *lam, double *K)
+solve_closed_form(double alpha, int flip, double *lam, double *m, double *K, double *E)
 {
+    if (alpha == 1.0) {
+        *lam = 1.0;
+        *m = 0.0;
+        *K = *E = PI_2;
+        return;
+    }
+    *m = 1.0;
+    *E = 1.0;
+    if (isinf(alpha)) {
+        *lam = INFINITY;
+        *K = INFINITY;
+        return;
+    }
+    double t = flip ? -log(alpha) : log(alpha);
     double L = LN4 + 0.5 * (t + log(0.5 * t));
     for (int i = 0; i < 3; ++i) {
         double f = L - LN4 - 0.5 * (t + log(L - 1.0));
@@ -135,40 +150,29 @@ solve_block(const double *alpha, Py_ssize_t n, int iterations,
     double m[BLOCK], p[BLOCK], B[BLOCK], D[BLOCK], V[BLOCK], dm[BLOCK], inv_m[BLOCK];
     unsigned char done[BLOCK];
 
+    /* iterations = 0 and lambda alone: the start is the answer (faster path). */
+    int start_only = iterations == 0 && !mo && !ko && !eo;
+
     /* Stage 1: checks, closed-form cases, start. */
     for (Py_ssize_t i = 0; i < n; ++i) {
         double a = alpha[i];
         if (!(a > 0.0)) {
             return i;
         }
-        done[i] = 1;
-        m[i] = p[i] = 0.5; /* placeholders for the closed-form cases */
-        dm[i] = 0.0;
-        if (a == 1.0) {
-            lam[i] = 1.0;
-            if (mo) mo[i] = 0.0;
-            if (ko) ko[i] = PI_2;
-            if (eo) eo[i] = PI_2;
-            continue;
-        }
-        if (isinf(a)) {
-            lam[i] = INFINITY;
-            if (mo) mo[i] = 1.0;
-            if (ko) ko[i] = INFINITY;
-            if (eo) eo[i] = 1.0;
-            continue;
-        }
         int flip = a < 1.0;
         double ap = flip ? 1.0 / a : a; /* alpha' = max(alpha, 1/alpha) */
         uint64_t bits;
         memcpy(&bits, &ap, sizeof bits);
         int e = (int)(bits >> 52) - 1023; /* ap = 2^e f, f in [1, 2) */
-        if (e >= START_BINADES) {
-            double K;
-            solve_asymptotic(a, flip ? -log(a) : log(a), flip, &lam[i], &K);
-            if (mo) mo[i] = 1.0;
+        if (e >= START_BINADES || a == 1.0) {
+            double mi, K, E;
+            solve_closed_form(a, flip, &lam[i], &mi, &K, &E);
+            if (mo) mo[i] = mi;
             if (ko) ko[i] = K;
-            if (eo) eo[i] = 1.0;
+            if (eo) eo[i] = E;
+            done[i] = 1;
+            m[i] = p[i] = 0.5; /* placeholders, never output */
+            dm[i] = 0.0;
             continue;
         }
         done[i] = 0;
@@ -183,8 +187,15 @@ solve_block(const double *alpha, Py_ssize_t n, int iterations,
         double r = horner(START_R[START_SPLIT * e + k], START_DEGREE, 8.0 * f - (9.0 + 2.0 * k));
         double eps = flip ? (1.0 - a) * ap : a - 1.0;
         double h = 1.0 + eps * r;
+        if (start_only) {
+            lam[i] = flip ? sqrt(a / h) : sqrt(ap * h);
+            continue;
+        }
         p[i] = 1.0 / (ap * h);
         m[i] = eps * (1.0 + ap * r) * p[i];
+    }
+    if (start_only) {
+        return -1;
     }
 
     for (int it = 0; it < iterations; ++it) {
