@@ -1,0 +1,114 @@
+"""python -m fem_validation: validate hertz against finite elements.
+
+    python -m fem_validation                       # the five default scenes, level 2
+    python -m fem_validation --alpha 2 7 --level 1 # equal steel bodies, alpha = 2 and 7
+    python -m fem_validation --scene crossed-30deg --out DIR
+    python -m fem_validation --study alpha-3 --levels 0 1 2 3
+
+Writes DIR/report.json, DIR/report.md, <scene>_body1.vtu, <scene>_body2.vtu and
+<scene>_pressure.png per scene (a study writes study.json, study.md and
+study.png); with --readme also the README's tables and docs/fem/*.png.  Errors
+print one line on stderr and exit with status 2.
+"""
+
+from __future__ import annotations
+
+import argparse
+import json
+import logging
+import shutil
+import sys
+import time
+from os import cpu_count
+from pathlib import Path
+
+from . import FEMValidationError, reports, validate
+from .mesh import DEFAULT_LEVEL, LEVEL_H0
+from .scenes import NAMED, default_scenes, equal_steel
+from .study import refinement_study
+
+log = logging.getLogger("fem_validation")
+
+
+def _scene(name: str):
+    if name.startswith("alpha-"):
+        return equal_steel(float(name.removeprefix("alpha-")))
+    if name in NAMED:
+        return NAMED[name]()
+    raise ValueError(f"unknown scene {name!r}: use alpha-<A>, {', '.join(NAMED)}")
+
+
+def publish(marker: str, text: str, images) -> None:
+    """Replace the README section between <!-- marker --> and <!-- /marker --> and copy
+    the images to docs/fem/."""
+    readme = Path("README.md")
+    content = readme.read_text() if readme.exists() else ""
+    begin, end = f"<!-- {marker} -->", f"<!-- /{marker} -->"
+    if begin not in content or end not in content:
+        raise ValueError(f"README.md (in {Path.cwd()}) has no {begin} ... {end} section")
+    head, rest = content.split(begin, 1)
+    readme.write_text(f"{head}{begin}\n{text.strip()}\n{end}{rest.split(end, 1)[1]}")
+    docs = Path("docs") / "fem"
+    docs.mkdir(parents=True, exist_ok=True)
+    for src, name in images:
+        shutil.copyfile(src, docs / name)
+
+
+def _parser() -> argparse.ArgumentParser:
+    p = argparse.ArgumentParser(prog="python -m fem_validation",
+                                description="Finite-element validation of hertz.")
+    p.add_argument("--alpha", type=float, nargs="+", metavar="A",
+                   help="equal steel bodies with curvature ratio A (repeatable)")
+    p.add_argument("--scene", nargs="+", metavar="NAME", default=[],
+                   help=f"named scenes: alpha-<A>, {', '.join(NAMED)}")
+    p.add_argument("--level", type=int, default=DEFAULT_LEVEL, choices=sorted(LEVEL_H0),
+                   help=f"mesh level (element size in the contact zone: {LEVEL_H0} x b)")
+    p.add_argument("--study", metavar="NAME", help="mesh-refinement study of one scene")
+    p.add_argument("--levels", type=int, nargs="+", default=[0, 1, 2, 3],
+                   help="levels of the study (default 0 1 2 3)")
+    p.add_argument("--out", type=Path, default=Path("fem_out"), help="output directory")
+    p.add_argument("--readme", action="store_true",
+                   help="also put the table (or the study) into README.md and the plots "
+                        "into docs/fem/ (run from the repository root)")
+    p.add_argument("--quiet", action="store_true", help="log warnings only")
+    return p
+
+
+def main(argv=None) -> int:
+    argv = sys.argv[1:] if argv is None else list(argv)
+    args = _parser().parse_args(argv)
+    logging.basicConfig(level=logging.WARNING if args.quiet else logging.INFO,
+                        format="%(asctime)s %(message)s", datefmt="%H:%M:%S")
+    logging.getLogger("skfem").setLevel(logging.ERROR)
+    try:
+        args.out.mkdir(parents=True, exist_ok=True)
+        if args.study:
+            study = refinement_study(_scene(args.study), args.levels, args.out)
+            print(json.dumps(study["rates"], indent=1))
+            if args.readme:
+                publish("fem-study", (args.out / "study.md").read_text(),
+                        [(args.out / "study.png", f"{study['scene']}_study.png")])
+            return 0
+        scenes = [equal_steel(a) for a in args.alpha or []] + [_scene(n) for n in args.scene]
+        scenes = scenes or default_scenes()
+        t0 = time.perf_counter()
+        results = [validate(s, args.level, args.out) for s in scenes]
+        command = " ".join(["python -m fem_validation", *argv])
+        header = (f"Level {args.level} (element size {LEVEL_H0[args.level]} b in the contact "
+                  f"zone); {time.perf_counter() - t0:.0f} s in all on {cpu_count()} cores; "
+                  f"`{command}`.\n")
+        json_path, md_path = reports(results, args.out, header)
+        print(md_path.read_text())
+        if args.readme:
+            publish("fem-validation", md_path.read_text(),
+                    [(args.out / f"{r.scene}_pressure.png", f"{r.scene}_pressure.png")
+                     for r in results])
+        log.info("wrote %s, %s and the VTU/PNG files in %s", json_path, md_path, args.out)
+    except (FEMValidationError, ValueError) as exc:
+        print(f"fem_validation: error: {exc}", file=sys.stderr)
+        return 2
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())

@@ -1,0 +1,104 @@
+"""The validation scenes: pairs of bodies, a target load and the angle between them."""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+
+import hertz
+
+STEEL = {"E": 210e9, "nu": 0.3}
+ALUMINIUM = {"E": 70e9, "nu": 0.33}
+#: Semi-major axis over the smallest radius for the default loads (Hertz needs a << R).
+A_OVER_R = 0.03
+
+
+@dataclass(frozen=True)
+class Scene:
+    """Two bodies pressed together.
+
+    Attributes
+    ----------
+    name : str
+        Identifier used in file names and reports.
+    body1, body2 : hertz.Body
+        The bodies; body 1 is the upper block of the model.
+    load : float
+        Target normal force [N]; the finite-element run reports the force it
+        actually reached and is compared with Hertz at that force.
+    angle : float
+        Angle from body 1's x axis to body 2's x axis [rad].
+    """
+
+    name: str
+    body1: hertz.Body
+    body2: hertz.Body
+    load: float
+    angle: float = 0.0
+
+    def hertz(self, load: float | None = None) -> hertz.Contact:
+        """The Hertz solution at ``load`` (default: the scene's target load)."""
+        return hertz.contact(self.body1, self.body2, load=self.load if load is None else load,
+                             angle=self.angle)
+
+    @property
+    def curvature_tensor(self) -> np.ndarray:
+        """2x2 relative curvature tensor of the gap in body 1's frame [1/m].
+
+        Built from the radii directly (not from hertz), so that the orientation
+        found by the finite elements is an independent check.
+        """
+        c, s = math.cos(self.angle), math.sin(self.angle)
+        rot = np.array([[c, -s], [s, c]])
+        k1 = np.diag([1 / self.body1.Rx, 1 / self.body1.Ry])
+        k2 = np.diag([1 / self.body2.Rx, 1 / self.body2.Ry])
+        return k1 + rot @ k2 @ rot.T
+
+    @property
+    def symmetric(self) -> bool:
+        """True when the planes x = 0 and y = 0 are planes of symmetry (quarter model)."""
+        return abs(self.curvature_tensor[0, 1]) <= 1e-12 * abs(self.curvature_tensor).max()
+
+    @property
+    def e_star(self) -> float:
+        return self.hertz().e_star
+
+
+def _load_for(body1, body2, angle, a_over_r=A_OVER_R) -> float:
+    """The load whose semi-major axis is a_over_r times the smallest radius."""
+    r_min = min(abs(r) for b in (body1, body2) for r in (b.Rx, b.Ry) if math.isfinite(r))
+    a1 = hertz.contact(body1, body2, load=1.0, angle=angle).a
+    return (a_over_r * r_min / a1) ** 3
+
+
+def equal_steel(alpha: float, radius: float = 0.01) -> Scene:
+    """Two identical steel bodies with principal radii R and alpha R (ratio alpha)."""
+    if not alpha >= 1:
+        raise ValueError(f"alpha must be >= 1, got {alpha!r}")
+    b = hertz.Body(radius, alpha * radius, **STEEL)
+    return Scene(f"alpha-{alpha:g}", b, b, _load_for(b, b, 0.0))
+
+
+def steel_on_aluminium() -> Scene:
+    """A steel ellipsoid on an aluminium one, principal planes aligned (alpha = 2.38)."""
+    b1 = hertz.Body(0.010, 0.020, **STEEL)
+    b2 = hertz.Body(0.015, 0.050, **ALUMINIUM)
+    return Scene("steel-aluminium", b1, b2, _load_for(b1, b2, 0.0))
+
+
+def crossed_30deg() -> Scene:
+    """Two steel ellipsoids with principal planes 30 degrees apart (major axis at -75 deg)."""
+    b = hertz.Body(0.010, 0.020, **STEEL)
+    angle = math.radians(30.0)
+    return Scene("crossed-30deg", b, b, _load_for(b, b, angle), angle)
+
+
+def default_scenes() -> list[Scene]:
+    """alpha = 1, 3, 10 (steel), steel on aluminium, and principal planes at 30 degrees."""
+    return [equal_steel(1), equal_steel(3), equal_steel(10), steel_on_aluminium(),
+            crossed_30deg()]
+
+
+NAMED = {"steel-aluminium": steel_on_aluminium, "crossed-30deg": crossed_30deg}
