@@ -1,13 +1,14 @@
 """Accuracy and speed of hertz.ellipticity: the figures of the README's solver section.
 
-    python benchmarks/solver.py [--n 1000000] [--repeats 11]
+    python benchmarks/solver.py [--n 1000000] [--repeats 11] [--no-readme]
 
 Accuracy: maximum relative error against the 50-digit mpmath table
 tests/data/reference_lambda.csv (regenerate with tests/make_reference_table.py).
 Speed: N alphas log-uniform in [1, 1e6]; every contender is timed once per
 round, rounds interleaved, and the ratio to one scipy.special.ellipk +
 ellipe pass over N parameters is taken within each round (the machine's
-speed drifts between rounds); medians over the rounds are reported.
+speed drifts between rounds); medians over the rounds are reported.  The
+tables replace the solver section of README.md unless --no-readme.
 """
 
 from __future__ import annotations
@@ -23,7 +24,7 @@ from scipy import special
 ROOT = Path(__file__).resolve().parents[1]
 sys.path.insert(0, str(ROOT / "tests"))
 
-from _machine import describe  # noqa: E402
+from _common import describe, replace_readme_section  # noqa: E402
 
 import hertz  # noqa: E402
 from hertz._ellipse import solve_ellipse  # noqa: E402
@@ -88,15 +89,19 @@ def main():
     ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
     ap.add_argument("--n", type=int, default=1_000_000)
     ap.add_argument("--repeats", type=int, default=11)
+    ap.add_argument("--no-readme", action="store_true", help="do not update README.md")
     args = ap.parse_args()
-    print(f"{describe()}, {time.strftime('%Y-%m-%d')}\n")
-    print("| maximum relative error against mpmath (50 digits) | value |\n|---|---|")
-    for name, value in accuracy().items():
-        print(f"| {name} | {value:.2e} |")
-    print(f"\n| N = {args.n:.0e}, alpha log-uniform in [1, 1e6] | ns per element (median) "
-          f"| time / (ellipk + ellipe), median of {args.repeats} rounds |\n|---|---|---|")
-    for name, (ns, ratio) in speed(args.n, args.repeats).items():
-        print(f"| {name} | {ns:.1f} | {ratio:.2f} |")
+    lines = [f"{describe()}, {time.strftime('%Y-%m-%d')}; `python benchmarks/solver.py`", "",
+             "| maximum relative error against mpmath (50 digits) | value |", "|---|---|"]
+    lines += [f"| {name} | {value:.2e} |" for name, value in accuracy().items()]
+    lines += ["", f"| N = {args.n:.0e}, alpha log-uniform in [1, 1e6] | ns per element (median) "
+              f"| time / (ellipk + ellipe), median of {args.repeats} rounds |", "|---|---|---|"]
+    lines += [f"| {name} | {ns:.1f} | {ratio:.2f} |"
+              for name, (ns, ratio) in speed(args.n, args.repeats).items()]
+    text = "\n".join(lines)
+    print(text)
+    if not args.no_readme:
+        replace_readme_section("solver-table", text)
 
 
 if __name__ == "__main__":

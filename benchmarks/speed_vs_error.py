@@ -38,7 +38,7 @@ sys.path.insert(0, str(ROOT / "tests"))
 sys.path.insert(0, str(ROOT / "benchmarks"))
 
 import mpmath as mp  # noqa: E402
-from _machine import describe  # noqa: E402
+from _common import describe, replace_readme_section  # noqa: E402
 from reference import load_table  # noqa: E402
 
 import hertz  # noqa: E402
@@ -309,16 +309,6 @@ def plot(ms: list[Method], path: Path) -> None:
     fig.savefig(path, dpi=130)
 
 
-def replace_section(readme: Path, text: str) -> None:
-    begin, end = "<!-- speed-vs-error -->", "<!-- /speed-vs-error -->"
-    content = readme.read_text()
-    if begin not in content:
-        raise SystemExit(f"{readme} has no {begin} marker")
-    head, rest = content.split(begin, 1)
-    tail = rest.split(end, 1)[1]
-    readme.write_text(f"{head}{begin}\n{text}\n{end}{tail}")
-
-
 def main():
     ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
     ap.add_argument("--out", type=Path, default=ROOT / "docs")
@@ -344,7 +334,7 @@ def main():
     except ImportError:
         print("matplotlib missing (pip install '.[plot]'): no PNG written", file=sys.stderr)
     if not args.no_readme:
-        replace_section(ROOT / "README.md", md)
+        replace_readme_section("speed-vs-error", md)
     print(md)
     print(f"\n({time.time() - t_start:.0f} s)")
 

@@ -77,7 +77,7 @@ def ellipticity(alpha, *, iterations=DEFAULT_ITERATIONS):
     iterations : int, optional
         Bailey steps after the start (0 .. 3).  The default, 1, gives lambda
         to a few units in the last place (measured maximum relative error
-        4e-16 on 1 <= alpha <= 1e15); 0 returns the start, about three times
+        4e-16 on 1 <= alpha <= 1e15); 0 returns the start, about six times
         faster and accurate to 3e-8.
 
     Returns

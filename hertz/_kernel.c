@@ -45,6 +45,17 @@
 
 #include "_coefficients.h"
 
+/* With GCC or Clang on x86-64 Linux, the block functions are also compiled for
+ * AVX2 and the better one is chosen at load time; the vectorised stages then
+ * take four elements at a time.  Elementwise operations round the same way at
+ * any vector width (and -ffp-contract=off forbids fused multiply-adds), so
+ * both versions give the same bits. */
+#if defined(__GNUC__) && defined(__x86_64__) && defined(__linux__)
+#define MULTIVERSION __attribute__((target_clones("avx2", "default")))
+#else
+#define MULTIVERSION
+#endif
+
 #if START_DEGREE != 5
 #error "the start is evaluated as a degree-5 polynomial"
 #endif
@@ -64,7 +75,7 @@ horner(const double *c, int degree, double x)
  * full relative precision (m near 0, p near 0). */
 #define BLOCK 64
 
-static void
+MULTIVERSION static void
 associate_integrals(Py_ssize_t n, const double *m, const double *p,
                     double *B, double *D, double *V)
 {
@@ -147,7 +158,7 @@ solve_closed_form(double alpha, int flip, double *lam, double *m, double *K, dou
 
 /* Solve n <= BLOCK elements.  Returns -1, or the index of the first alpha
  * that is not a positive number (outputs are then incomplete). */
-static Py_ssize_t
+MULTIVERSION static Py_ssize_t
 solve_block(const double *alpha, Py_ssize_t n, int iterations,
             double *lam, double *mo, double *ko, double *eo)
 {
@@ -288,6 +299,96 @@ solve_block(const double *alpha, Py_ssize_t n, int iterations,
     return -1;
 }
 
+#if defined(__GNUC__) && defined(__x86_64__)
+#include <immintrin.h>
+#define HAVE_AVX2_START 1
+
+/* The start-only path (iterations = 0, lambda alone) four elements at a time
+ * with AVX2 gathers from START_R: the arithmetic of stage 1 of solve_block in
+ * the same order (no FMA is enabled here, and -ffp-contract=off), so the
+ * results are the same bits.  A group of four with an element outside
+ * 1 <= alpha < 2^64 (alpha < 1, closed forms, bad input) goes through
+ * solve_block instead.  Returns -1 or the index of the first bad alpha. */
+__attribute__((target("avx2"))) static Py_ssize_t
+start_only_avx2(const double *alpha, Py_ssize_t n, double *lam)
+{
+    const __m256d one = _mm256_set1_pd(1.0), top = _mm256_set1_pd(0x1p64);
+    const __m256d two = _mm256_set1_pd(2.0), eight = _mm256_set1_pd(8.0);
+    const __m256d nine = _mm256_set1_pd(9.0), two52 = _mm256_set1_pd(0x1p52);
+    const __m256i mantissa = _mm256_set1_epi64x(0x000FFFFFFFFFFFFFll);
+    const __m256i exponent_one = _mm256_set1_epi64x(0x3FF0000000000000ll);
+    const __m256i bias = _mm256_set1_epi64x(4 * 1023), three = _mm256_set1_epi64x(3);
+    const __m256i two52_bits = _mm256_set1_epi64x(0x4330000000000000ll);
+    const double *table = &START_R[0][0];
+    Py_ssize_t i = 0;
+    for (; i + 4 <= n; i += 4) {
+        __m256d a = _mm256_loadu_pd(alpha + i);
+        __m256d plain = _mm256_and_pd(_mm256_cmp_pd(a, one, _CMP_GE_OQ),
+                                      _mm256_cmp_pd(a, top, _CMP_LT_OQ));
+        if (_mm256_movemask_pd(plain) != 0xF) {
+            Py_ssize_t r = solve_block(alpha + i, 4, 0, lam + i, NULL, NULL, NULL);
+            if (r >= 0) {
+                return i + r;
+            }
+            continue;
+        }
+        __m256i bits = _mm256_castpd_si256(a);
+        __m256i row = _mm256_sub_epi64(_mm256_srli_epi64(bits, 50), bias); /* 4 e + k */
+        /* k = row & 3 as a double, exactly: (2^52 + k) - 2^52 */
+        __m256d k = _mm256_sub_pd(
+            _mm256_castsi256_pd(_mm256_or_si256(_mm256_and_si256(row, three), two52_bits)),
+            two52);
+        __m256d f = _mm256_castsi256_pd(
+            _mm256_or_si256(_mm256_and_si256(bits, mantissa), exponent_one));
+        __m256d z = _mm256_sub_pd(_mm256_mul_pd(eight, f),
+                                  _mm256_add_pd(nine, _mm256_mul_pd(two, k)));
+        __m256d z2 = _mm256_mul_pd(z, z);
+        __m256i at = _mm256_add_epi64(_mm256_slli_epi64(row, 2), _mm256_slli_epi64(row, 1));
+        __m256d c0 = _mm256_i64gather_pd(table, at, 8);
+        __m256d c1 = _mm256_i64gather_pd(table + 1, at, 8);
+        __m256d c2 = _mm256_i64gather_pd(table + 2, at, 8);
+        __m256d c3 = _mm256_i64gather_pd(table + 3, at, 8);
+        __m256d c4 = _mm256_i64gather_pd(table + 4, at, 8);
+        __m256d c5 = _mm256_i64gather_pd(table + 5, at, 8);
+        __m256d r = _mm256_add_pd(
+            _mm256_add_pd(c0, _mm256_mul_pd(c1, z)),
+            _mm256_mul_pd(z2, _mm256_add_pd(_mm256_add_pd(c2, _mm256_mul_pd(c3, z)),
+                                            _mm256_mul_pd(z2, _mm256_add_pd(
+                                                                  c4, _mm256_mul_pd(c5, z))))));
+        __m256d h = _mm256_add_pd(one, _mm256_mul_pd(_mm256_sub_pd(a, one), r));
+        _mm256_storeu_pd(lam + i, _mm256_sqrt_pd(_mm256_mul_pd(a, h)));
+    }
+    if (i < n) {
+        Py_ssize_t r = solve_block(alpha + i, n - i, 0, lam + i, NULL, NULL, NULL);
+        if (r >= 0) {
+            return i + r;
+        }
+    }
+    return -1;
+}
+
+/* -1: not decided yet, 0: scalar code, 1: AVX2 start-only path. */
+static int use_avx2 = -1;
+
+static int
+avx2_enabled(void)
+{
+    if (use_avx2 < 0) {
+        __builtin_cpu_init();
+        use_avx2 = __builtin_cpu_supports("avx2") ? 1 : 0;
+    }
+    return use_avx2;
+}
+#else
+#define HAVE_AVX2_START 0
+static int use_avx2 = 0;
+static int
+avx2_enabled(void)
+{
+    return 0;
+}
+#endif
+
 /* ---------------------------------------------------------------- Python API */
 
 static int
@@ -356,7 +457,14 @@ py_solve(PyObject *self, PyObject *args)
     const double *alpha = (const double *)in.buf;
     double *lam = out[0].buf, *mo = out[1].buf, *ko = out[2].buf, *eo = out[3].buf;
     Py_ssize_t bad = -1;
+    int start_only = iterations == 0 && !mo && !ko && !eo;
     Py_BEGIN_ALLOW_THREADS
+#if HAVE_AVX2_START
+    if (start_only && avx2_enabled()) {
+        bad = start_only_avx2(alpha, n, lam);
+        n = 0; /* done */
+    }
+#endif
     for (Py_ssize_t i = 0; i < n; i += BLOCK) {
         Py_ssize_t len = n - i < BLOCK ? n - i : BLOCK;
         Py_ssize_t r = solve_block(alpha + i, len, iterations, lam + i, mo ? mo + i : NULL,
@@ -419,8 +527,33 @@ py_associate_integrals(PyObject *self, PyObject *args)
     Py_RETURN_NONE;
 }
 
+PyDoc_STRVAR(simd_doc,
+"simd(enable=None) -> bool\n\n"
+"Whether the AVX2 start-only path is used (it gives the same bits as the\n"
+"scalar code); with enable, switch it on or off first (on only if the CPU\n"
+"has AVX2).  Private: for tests and benchmarks.");
+
+static PyObject *
+py_simd(PyObject *self, PyObject *args)
+{
+    PyObject *enable = Py_None;
+    if (!PyArg_ParseTuple(args, "|O", &enable)) {
+        return NULL;
+    }
+    if (enable != Py_None) {
+        int on = PyObject_IsTrue(enable);
+        if (on < 0) {
+            return NULL;
+        }
+        use_avx2 = -1;
+        use_avx2 = on ? avx2_enabled() : 0;
+    }
+    return PyBool_FromLong(avx2_enabled());
+}
+
 static PyMethodDef methods[] = {
     {"solve", py_solve, METH_VARARGS, solve_doc},
+    {"simd", py_simd, METH_VARARGS, simd_doc},
     {"associate_integrals", py_associate_integrals, METH_VARARGS, assoc_doc},
     {NULL, NULL, 0, NULL},
 };

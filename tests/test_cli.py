@@ -97,3 +97,11 @@ def test_console_script_runs_without_traceback():
     bad = subprocess.run(cmd + ["--load=-5"], capture_output=True, text=True)
     assert bad.returncode == 2 and "Traceback" not in bad.stderr
     assert bad.stderr.strip().count("\n") == 0
+
+
+def test_import_hertz_is_light():
+    """numpy and the kernel only: no scipy, FEM packages or matplotlib at import."""
+    code = ("import sys, hertz; print(sorted(m for m in ('scipy', 'gmsh', 'matplotlib', 'skfem', "
+            "'meshio', 'pyamg', 'mpmath') if m in sys.modules))")
+    out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True)
+    assert out.returncode == 0 and out.stdout.strip() == "[]"
