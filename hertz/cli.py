@@ -33,6 +33,7 @@ from __future__ import annotations
 import argparse
 import json
 import math
+import os
 import sys
 import tomllib
 
@@ -221,7 +222,10 @@ def main(argv=None) -> int:
     except (_UsageError, ValueError) as exc:
         print(f"hertz: error: {exc}", file=sys.stderr)
         return 2
-    print(_json(scene, c) if args.json else _table(scene, body1, body2, c))
+    try:
+        print(_json(scene, c) if args.json else _table(scene, body1, body2, c), flush=True)
+    except BrokenPipeError:  # `hertz | head`: the reader left; stop quietly
+        os.dup2(os.open(os.devnull, os.O_WRONLY), sys.stdout.fileno())
     return 0
 
 

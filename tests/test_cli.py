@@ -97,6 +97,9 @@ def test_console_script_runs_without_traceback():
     bad = subprocess.run(cmd + ["--load=-5"], capture_output=True, text=True)
     assert bad.returncode == 2 and "Traceback" not in bad.stderr
     assert bad.stderr.strip().count("\n") == 0
+    closed = subprocess.Popen(cmd, stdout=subprocess.PIPE, stderr=subprocess.PIPE)
+    closed.stdout.close()  # the reader goes away before the table is written
+    assert closed.wait() == 0 and closed.stderr.read() == b""
 
 
 def test_import_hertz_is_light():
