@@ -1,5 +1,5 @@
 /*
- * hertz._kernel -- the contact-ellipse solver, one element at a time.
+ * hertz._kernel -- the contact-ellipse solver.
  *
  * Problem (Hokada, Iizuka & Takada, arXiv 2508.06967, eq. (alpha_lambda_relation)):
  * given the curvature ratio alpha = rho_x / rho_y >= 1, find the elliptic
@@ -34,8 +34,8 @@
  *
  * For alpha >= 2^START_BINADES (1.8e19) the root satisfies
  * lambda^2 = alpha (L - 1), L = ln(4 lambda), to a relative O(1/alpha) and is
- * solved directly.  alpha < 1 uses lambda(alpha) = 1/lambda(1/alpha) without
- * forming 1/alpha.
+ * solved directly.  alpha < 1 uses lambda(alpha) = 1/lambda(1/alpha); 1/alpha
+ * only picks the start, the residual of (2) uses alpha itself.
  */
 #define PY_SSIZE_T_CLEAN
 #include <Python.h>
@@ -152,12 +152,11 @@ solve_closed_form(double alpha, int flip, double *lam, double *m, double *K, dou
     *K = L;
 }
 
-/* Elements are processed in blocks of BLOCK, one stage at a time, so that
- * the processor overlaps independent elements (and vectorises the
- * branch-free stages) instead of waiting on the dependency chain of one. */
-
 /* Solve n <= BLOCK elements.  Returns -1, or the index of the first alpha
- * that is not a positive number (outputs are then incomplete). */
+ * that is not a positive number (outputs are then incomplete).  The block is
+ * processed one stage at a time, so that the processor overlaps independent
+ * elements (and the compiler vectorises the branch-free stages) instead of
+ * waiting on the dependency chain of one. */
 MULTIVERSION static Py_ssize_t
 solve_block(const double *alpha, Py_ssize_t n, int iterations,
             double *lam, double *mo, double *ko, double *eo)
