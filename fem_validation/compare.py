@@ -146,13 +146,16 @@ def profiles(scene: Scene, mesh: BlockMesh, sol: ContactSolution, n: int = 121) 
 
 
 def compare_with_hertz(scene: Scene, mesh: BlockMesh, sol: ContactSolution, level: int,
-            seconds: float) -> Comparison:
-    """Errors of the finite-element solution against Hertz at the force it reached."""
+                       seconds: float, prof: dict | None = None) -> Comparison:
+    """Errors of the finite-element solution against Hertz at the force it reached.
+
+    ``prof`` is the result of :func:`profiles`, computed here if not given.
+    """
     c = scene.hertz(sol.force)
     xy = mesh.bodies[0].p[:2, mesh.pairs[:, 0]].T
     fit = fit_ellipse(xy, sol.pressure)
     moments = moment_ellipse(xy, sol.pressure * mesh.pair_area, mesh.quarter)
-    prof = profiles(scene, mesh, sol)
+    prof = profiles(scene, mesh, sol) if prof is None else prof
     settlement = sum(boussinesq_settlement(sol.force, b.E, b.nu, mesh.depth)
                      for b in (scene.body1, scene.body2))
     approach = sol.approach + settlement
@@ -224,16 +227,14 @@ def write_vtu(scene: Scene, mesh: BlockMesh, sol: ContactSolution, out: Path) ->
     return paths
 
 
-def plot_profiles(scene: Scene, mesh: BlockMesh, sol: ContactSolution, result: Comparison,
-                  path: Path) -> Path:
-    """PNG of the pressure along both axes, FEM against Hertz."""
+def plot_profiles(scene: Scene, prof: dict, result: Comparison, path: Path) -> Path:
+    """PNG of the pressure along both axes (``prof`` from :func:`profiles`), FEM against Hertz."""
     import matplotlib
 
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
 
-    prof = profiles(scene, mesh, sol)
-    c = scene.hertz(sol.force)
+    c = scene.hertz(result.load)
     fig, axes = plt.subplots(1, 2, figsize=(10, 4), sharey=True)
     for ax, name, semi in zip(axes, ("major", "minor"), (c.a, c.b), strict=True):
         d = prof[name]
@@ -244,7 +245,7 @@ def plot_profiles(scene: Scene, mesh: BlockMesh, sol: ContactSolution, result: C
         ax.grid(True, alpha=0.3)
         ax.legend(fontsize=8)
     axes[0].set_ylabel("pressure / Hertz p0")
-    fig.suptitle(f"{scene.name}: alpha = {c.alpha:.3g}, P = {sol.force:.4g} N, "
+    fig.suptitle(f"{scene.name}: alpha = {c.alpha:.3g}, P = {result.load:.4g} N, "
                  f"{result.dofs} dofs; p0 {result.p0_rel_err:+.1%}, a {result.a_rel_err:+.1%}, "
                  f"b {result.b_rel_err:+.1%}", fontsize=9)
     fig.tight_layout()

@@ -27,6 +27,12 @@ def _scalar_or_array(arr: np.ndarray):
     return float(arr) if arr.ndim == 0 else arr
 
 
+def _semi_elliptic(p0, r2):
+    """Hertz's pressure p0 sqrt(1 - r2) for r2 < 1, 0 outside (and where r2 is NaN: zero load)."""
+    return _scalar_or_array(np.asarray(np.where(r2 < 1.0, p0 * np.sqrt(np.maximum(1.0 - r2, 0.0)),
+                                                0.0)))
+
+
 def _radius(value, name: str) -> np.ndarray:
     arr = as_float_array(value, name)
     require(name, arr, (arr != 0) & ~np.isnan(arr),
@@ -172,9 +178,7 @@ class Contact:
         x = as_float_array(x, "x")
         y = as_float_array(y, "y")
         with np.errstate(divide="ignore", invalid="ignore"):
-            r2 = np.square(x / self.a) + np.square(y / self.b)
-            p = np.where(r2 < 1.0, self.p0 * np.sqrt(np.maximum(1.0 - r2, 0.0)), 0.0)
-        return _scalar_or_array(np.asarray(p))
+            return _semi_elliptic(self.p0, np.square(x / self.a) + np.square(y / self.b))
 
 
 @dataclass(frozen=True)
@@ -213,9 +217,7 @@ class LineContact:
         """Pressure p0 sqrt(1 - (x/b)**2) at distance x [m] across the line [Pa]."""
         x = as_float_array(x, "x")
         with np.errstate(divide="ignore", invalid="ignore"):
-            r2 = np.square(x / self.half_width)
-            p = np.where(r2 < 1.0, self.p0 * np.sqrt(np.maximum(1.0 - r2, 0.0)), 0.0)
-        return _scalar_or_array(np.asarray(p))
+            return _semi_elliptic(self.p0, np.square(x / self.half_width))
 
 
 def _check_body(body, name: str) -> Body:

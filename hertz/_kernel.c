@@ -276,19 +276,24 @@ solve_block(const double *alpha, Py_ssize_t n, int iterations,
      * K = D (1 + alpha' p), E = p D (1 + alpha').  Without a step (iterations
      * = 0) they are those of the start. */
     double K[BLOCK], E[BLOCK];
-    for (Py_ssize_t i = 0; i < n; ++i) {
-        double a = alpha[i], pi = p[i], h = dm[i], d = D[i], v = V[i];
-        double p0 = pi + h, ip0 = 1.0 / p0;
-        double d1 = 0.5 * v * ip0;
-        double d2 = 0.5 * (1.5 * p0 * d - 2.0 * p0 * v + (m[i] - h) * v) * ip0 * ip0 * inv_m[i];
-        double droot = d + h * (d1 + 0.5 * h * d2);
-        double ia = 1.0 / a;
-        int flip = a < 1.0;
-        K[i] = flip ? droot * (1.0 + pi * ia) : droot * (1.0 + a * pi);
-        E[i] = flip ? pi * droot * (1.0 + a) * ia : pi * droot * (1.0 + a);
-        if (iterations == 0) {
-            K[i] = B[i] + d;
-            E[i] = B[i] + pi * d;
+    if (iterations == 0) {
+        for (Py_ssize_t i = 0; i < n; ++i) {
+            K[i] = B[i] + D[i];
+            E[i] = B[i] + p[i] * D[i];
+        }
+    }
+    else {
+        for (Py_ssize_t i = 0; i < n; ++i) {
+            double a = alpha[i], pi = p[i], h = dm[i], d = D[i], v = V[i];
+            double p0 = pi + h, ip0 = 1.0 / p0;
+            double d1 = 0.5 * v * ip0;
+            double d2 = 0.5 * (1.5 * p0 * d - 2.0 * p0 * v + (m[i] - h) * v) * ip0 * ip0
+                        * inv_m[i];
+            double droot = d + h * (d1 + 0.5 * h * d2);
+            double ia = 1.0 / a;
+            int flip = a < 1.0;
+            K[i] = flip ? droot * (1.0 + pi * ia) : droot * (1.0 + a * pi);
+            E[i] = flip ? pi * droot * (1.0 + a) * ia : pi * droot * (1.0 + a);
         }
     }
     for (Py_ssize_t i = 0; i < n; ++i) {
