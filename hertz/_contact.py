@@ -1,48 +1,78 @@
-"""Bodies, the Hertz point contact and the Hertz line contact.
+"""Bodies, the Hertz point contact and the Hertz line contact (Python face).
 
-Formulas (Hokada, Iizuka & Takada, sec. 2; Johnson, *Contact Mechanics*,
-1985, ch. 4), with lambda = a/b, m = 1 - 1/lambda**2, K = K(m), E = E(m),
-rho_+ = rho_x + rho_y and q = P / (pi lambda E*):
-
-    b = (3 E q / rho_+)**(1/3),      a = lambda b,
-    p0 = 3 P / (2 pi a b),           delta = (K/2) (9 rho_+ q**2 / E)**(1/3).
-
-p0 and delta are evaluated in forms that are exact at P = 0 (no 0/0).
+The formulas live in C (``hertz/_contact_kernel.c``, which says what it
+computes and from which equations); this module checks and shapes the input,
+picks the compiled pass, and wraps the results.  One element is computed in
+one compiled pass from the radii, angle and moduli to every field.
 """
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+import math
+from dataclasses import dataclass, field
 
 import numpy as np
 
-from ._ellipse import solve_ellipse
-from ._geometry import relative_curvature
-from ._validate import as_float_array, broadcast_shape, index_text, require
+from . import _ufuncs
+from ._validate import (
+    as_float_array,
+    broadcast_shape,
+    error_at,
+    first_failure,
+    is_duck_array,
+    with_index,
+)
 
 __all__ = ["Body", "Contact", "LineContact", "contact", "line_contact"]
 
+_CONTACT_FIELDS = ("a", "b", "ellipticity", "alpha", "m", "K", "E", "e_star", "rho_x", "rho_y",
+                   "major_axis_angle", "load", "p0", "delta", "stiffness")
+# given value: (scalar mode, fused ufunc, load pass ufunc)
+_MODES = {"load": (0, _ufuncs.contact_load, _ufuncs.given_load),
+          "approach": (1, _ufuncs.contact_approach, _ufuncs.given_approach),
+          "p0": (2, _ufuncs.contact_p0, _ufuncs.given_p0)}
+_GEOMETRY_NAMES = ("body1.Rx", "body1.Ry", "body2.Rx", "body2.Ry", "angle", "body1.E",
+                   "body1.nu", "body2.E", "body2.nu")
 
-def _scalar_or_array(arr: np.ndarray):
-    return float(arr) if arr.ndim == 0 else arr
+_RADIUS = "a nonzero radius in m (positive convex, negative concave, inf flat)"
+_MODULUS = "a positive, finite Young's modulus in Pa"
+_POISSON = "a Poisson's ratio in (-1, 0.5]"
 
 
-def _semi_elliptic(p0, r2):
-    """Hertz's pressure p0 sqrt(1 - r2) for r2 < 1, 0 outside (and where r2 is NaN: zero load)."""
-    return _scalar_or_array(np.asarray(np.where(r2 < 1.0, p0 * np.sqrt(np.maximum(1.0 - r2, 0.0)),
-                                                0.0)))
-
-
-def _radius(value, name: str) -> np.ndarray:
+def _real(value, name: str):
+    """A Python float for a scalar, a private read-only float64 copy of an
+    array, or a dask (duck) array unchanged (checked when it is computed)."""
+    kind = type(value)
+    if kind is float:
+        return value
+    if kind is int:
+        return float(value)
+    if is_duck_array(value):
+        return value
     arr = as_float_array(value, name)
-    require(name, arr, (arr != 0) & ~np.isnan(arr),
-            "a nonzero radius in m (positive convex, negative concave, inf flat)")
+    if arr.ndim == 0:
+        return float(arr)
+    arr = np.array(arr, dtype=np.float64, copy=True)
+    arr.flags.writeable = False
     return arr
 
 
-@dataclass(frozen=True)
+def _require(name: str, value, ok, allowed: str) -> None:
+    """Raise the ValueError for the first element of ``value`` where ``ok`` fails."""
+    if isinstance(value, float):
+        if not ok:
+            raise ValueError(f"{name} must be {allowed}, got {value!r}")
+    elif isinstance(value, np.ndarray) and not np.all(ok):
+        raise error_at(name, value, first_failure(ok), allowed)
+
+
+@dataclass(frozen=True, slots=True, init=False)
 class Body:
     """An elastic body near its contact point.
+
+    Each field is kept as a Python float, or as the body's own read-only
+    float64 copy of an array (changing the caller's array later changes
+    nothing); a dask array is kept as it is and checked when computed.
 
     Parameters
     ----------
@@ -54,6 +84,15 @@ class Body:
         Young's modulus [Pa], positive and finite.
     nu : float or array_like
         Poisson's ratio [-], in (-1, 0.5].
+
+    Raises
+    ------
+    TypeError
+        If a field is not real-valued numeric data.
+    ValueError
+        If a radius is 0 or NaN, E is not positive and finite, or nu is
+        outside (-1, 0.5] (the message names the field, the value and, for
+        an array, its index).
 
     Examples
     --------
@@ -69,15 +108,21 @@ class Body:
     Ry: float | np.ndarray
     E: float | np.ndarray
     nu: float | np.ndarray
+    _scalar: bool = field(repr=False, compare=False)
 
-    def __post_init__(self):
-        e = as_float_array(self.E, "E")
-        require("E", e, (e > 0) & np.isfinite(e), "a positive, finite Young's modulus in Pa")
-        nu = as_float_array(self.nu, "nu")
-        require("nu", nu, (nu > -1) & (nu <= 0.5), "a Poisson's ratio in (-1, 0.5]")
-        for name, value in (("Rx", _radius(self.Rx, "Rx")), ("Ry", _radius(self.Ry, "Ry")),
-                            ("E", e), ("nu", nu)):
-            object.__setattr__(self, name, _scalar_or_array(value))
+    def __init__(self, Rx, Ry, E, nu):
+        Rx, Ry, E, nu = _real(Rx, "Rx"), _real(Ry, "Ry"), _real(E, "E"), _real(nu, "nu")
+        with np.errstate(invalid="ignore"):
+            _require("Rx", Rx, (Rx != 0) & (Rx == Rx), _RADIUS)
+            _require("Ry", Ry, (Ry != 0) & (Ry == Ry), _RADIUS)
+            _require("E", E, (E > 0) & (E < math.inf), _MODULUS)
+            _require("nu", nu, (nu > -1) & (nu <= 0.5), _POISSON)
+        setter = object.__setattr__
+        setter(self, "Rx", Rx)
+        setter(self, "Ry", Ry)
+        setter(self, "E", E)
+        setter(self, "nu", nu)
+        setter(self, "_scalar", type(Rx) is type(Ry) is type(E) is type(nu) is float)
 
     @classmethod
     def sphere(cls, R, E, nu) -> Body:
@@ -87,12 +132,12 @@ class Body:
     @classmethod
     def cylinder(cls, R, E, nu) -> Body:
         """A cylinder of radius ``R`` [m] with its axis along the body's y axis."""
-        return cls(R, np.inf, E, nu)
+        return cls(R, math.inf, E, nu)
 
     @classmethod
     def plane(cls, E, nu) -> Body:
         """A flat surface (an elastic half-space)."""
-        return cls(np.inf, np.inf, E, nu)
+        return cls(math.inf, math.inf, E, nu)
 
     @property
     def compliance(self):
@@ -100,12 +145,20 @@ class Body:
         return (1.0 - np.square(self.nu)) / self.E
 
 
-@dataclass(frozen=True)
+def _semi_elliptic(p0, r2):
+    """Hertz's pressure p0 sqrt(1 - r2) for r2 < 1, 0 outside (and where r2 is NaN: zero load)."""
+    p = np.where(r2 < 1.0, p0 * np.sqrt(np.maximum(1.0 - r2, 0.0)), 0.0)
+    return float(p) if np.ndim(p) == 0 else p
+
+
+@dataclass(frozen=True, slots=True)
 class Contact:
     """Hertz point contact of two bodies; arrays when any input was an array.
 
     The ellipse frame has x along the major axis (semi-axis ``a``) and y
-    along the minor axis (semi-axis ``b``).
+    along the minor axis (semi-axis ``b``).  Array fields are the contact's
+    own arrays (fields that depend on the geometry only may be read-only
+    broadcast views when one geometry carries many loads).
 
     Attributes
     ----------
@@ -123,8 +176,6 @@ class Contact:
         E* [Pa], 1/E* = (1 - nu1**2)/E1 + (1 - nu2**2)/E2 (E' = 2 E*).
     rho_x, rho_y : float or ndarray
         Principal relative curvatures [1/m], rho_x >= rho_y > 0.
-    rho_sum : float or ndarray
-        rho_x + rho_y [1/m].
     major_axis_angle : float or ndarray
         Angle from body 1's x axis to the major axis [rad], in (-pi/2, pi/2];
         0 for a circular contact.
@@ -132,14 +183,16 @@ class Contact:
         Normal force P [N].
     p0 : float or ndarray
         Peak (central) pressure [Pa].
-    p_mean : float or ndarray
-        Mean pressure P / area = 2 p0 / 3 [Pa].
-    area : float or ndarray
-        Contact area pi a b [m**2].
     delta : float or ndarray
         Approach of distant points of the two bodies [m].
     stiffness : float or ndarray
         Normal contact stiffness dP/d(delta) = 3 P / (2 delta) [N/m].
+    rho_sum : float or ndarray
+        rho_x + rho_y [1/m] (computed on access).
+    p_mean : float or ndarray
+        Mean pressure P / area = 2 p0 / 3 [Pa] (computed on access).
+    area : float or ndarray
+        Contact area pi a b [m**2] (computed on access).
     """
 
     a: float | np.ndarray
@@ -152,14 +205,26 @@ class Contact:
     e_star: float | np.ndarray
     rho_x: float | np.ndarray
     rho_y: float | np.ndarray
-    rho_sum: float | np.ndarray
     major_axis_angle: float | np.ndarray
     load: float | np.ndarray
     p0: float | np.ndarray
-    p_mean: float | np.ndarray
-    area: float | np.ndarray
     delta: float | np.ndarray
     stiffness: float | np.ndarray
+
+    @property
+    def rho_sum(self):
+        """rho_x + rho_y [1/m]."""
+        return self.rho_x + self.rho_y
+
+    @property
+    def p_mean(self):
+        """Mean pressure 2 p0 / 3 [Pa]."""
+        return self.p0 * (2.0 / 3.0)
+
+    @property
+    def area(self):
+        """Contact area pi a b [m**2]."""
+        return math.pi * self.a * self.b
 
     def pressure(self, x, y):
         """Contact pressure at (x, y) in the ellipse frame [Pa].
@@ -181,7 +246,7 @@ class Contact:
             return _semi_elliptic(self.p0, np.square(x / self.a) + np.square(y / self.b))
 
 
-@dataclass(frozen=True)
+@dataclass(frozen=True, slots=True)
 class LineContact:
     """Hertz line contact (2D, per unit length of the contact line).
 
@@ -191,14 +256,14 @@ class LineContact:
         Semi-width b of the contact strip [m].
     p0 : float or ndarray
         Peak pressure [Pa].
-    p_mean : float or ndarray
-        Mean pressure (pi/4) p0 [Pa].
-    load_per_length : float or ndarray
-        Normal force per unit length [N/m].
     e_star : float or ndarray
         E* [Pa] as in :class:`Contact`.
     rho_sum : float or ndarray
         Relative curvature across the line [1/m] (1/R, R the effective radius).
+    load_per_length : float or ndarray
+        Normal force per unit length [N/m].
+    p_mean : float or ndarray
+        Mean pressure (pi/4) p0 [Pa] (computed on access).
 
     Notes
     -----
@@ -208,10 +273,14 @@ class LineContact:
 
     half_width: float | np.ndarray
     p0: float | np.ndarray
-    p_mean: float | np.ndarray
-    load_per_length: float | np.ndarray
     e_star: float | np.ndarray
     rho_sum: float | np.ndarray
+    load_per_length: float | np.ndarray
+
+    @property
+    def p_mean(self):
+        """Mean pressure (pi/4) p0 [Pa]."""
+        return self.p0 * (0.25 * math.pi)
 
     def pressure(self, x):
         """Pressure p0 sqrt(1 - (x/b)**2) at distance x [m] across the line [Pa]."""
@@ -221,57 +290,40 @@ class LineContact:
 
 
 def _check_body(body, name: str) -> Body:
-    if not isinstance(body, Body):
+    if type(body) is not Body and not isinstance(body, Body):
         raise TypeError(f"{name} must be a hertz.Body, got {type(body).__name__}")
     return body
 
 
-def _nonnegative(value, name: str, unit: str) -> np.ndarray:
-    arr = as_float_array(value, name)
-    require(name, arr, (arr >= 0) & np.isfinite(arr), f"a finite value >= 0 in {unit}")
-    return arr
+def _finish(values, cls):
+    """The result object; 0-d results become Python floats."""
+    if np.ndim(values[0]) == 0:
+        return cls(*(float(v) for v in values))
+    return cls(*values)
 
 
-def _curvatures_and_moduli(body1, body2, angle, **extra):
-    """Relative curvatures and E*, each on the broadcast shape of its own inputs only
-    (one geometry with a million loads is solved once), and the full result shape."""
-    body1 = _check_body(body1, "body1")
-    body2 = _check_body(body2, "body2")
-    ang = as_float_array(angle, "angle")
-    require("angle", ang, np.isfinite(ang), "a finite angle in rad")
-    geometry = {"body1.Rx": body1.Rx, "body1.Ry": body1.Ry, "body2.Rx": body2.Rx,
-                "body2.Ry": body2.Ry, "angle": ang}
-    moduli = {"body1.E": body1.E, "body1.nu": body1.nu, "body2.E": body2.E, "body2.nu": body2.nu}
-    shape = broadcast_shape(**geometry, **moduli, **extra)
-    curv = relative_curvature(*(np.asarray(v, dtype=np.float64) for v in geometry.values()))
-    e1, nu1, e2, nu2 = (np.asarray(v, dtype=np.float64) for v in moduli.values())
-    e_star = 1.0 / ((1.0 - nu1 * nu1) / e1 + (1.0 - nu2 * nu2) / e2)
-    return curv, e_star, shape
+def _first_error(status_ufunc, scalar, args, shape, extra=()):
+    """The ValueError of the first bad element (C order) with its index."""
+    codes = status_ufunc(*args)
+    i = first_failure(np.broadcast_to(codes, shape) == 0)
+    row = [float(np.broadcast_to(a, shape).reshape(-1)[i]) for a in args]
+    try:
+        scalar(*extra, *row)
+    except ValueError as exc:
+        return with_index(exc, shape, i)
+    return None  # pragma: no cover - the status pass and the loop agree
 
 
-def _no_contact(rho_x: np.ndarray, rho_y: np.ndarray) -> ValueError | None:
-    """The error for the first pair of bodies that has no Hertz point contact."""
-    bad = ~((rho_x > 0) & (rho_y > 0))
-    if not bad.any():
-        return None
-    i = int(np.argmax(bad.reshape(-1)))
-    where = index_text(rho_x.shape, i)
-    rx, ry = float(rho_x.reshape(-1)[i]), float(rho_y.reshape(-1)[i])
-    if rx > 0 and ry == 0:
-        return ValueError(
-            f"the bodies make a line contact{where} (relative curvature {rx:g} 1/m across, 0 "
-            "along the line: parallel cylinders or a cylinder on a plane); use "
-            "hertz.line_contact(body1, body2, load_per_length)")
-    if rx == 0 and ry == 0:
-        return ValueError(f"no Hertz point contact{where}: the relative curvature is zero in every "
-                          "direction (plane on plane, or surfaces that fit each other exactly)")
-    return ValueError(
-        f"no Hertz point contact{where}: principal relative curvatures {rx:g} and {ry:g} 1/m "
-        "must both be positive; a concave surface that conforms more closely than the convex "
-        "one touches it away from a single point")
+def _dask_apply(ufunc, args, nout):
+    import dask.array as da
+
+    signature = ",".join(["()"] * len(args)) + "->" + ",".join(["()"] * nout)
+    return da.apply_gufunc(ufunc, signature, *args, output_dtypes=(np.float64,) * nout,
+                           vectorize=False)
 
 
-def contact(body1: Body, body2: Body, load=None, angle=0.0, *, approach=None) -> Contact:
+def contact(body1: Body, body2: Body, load=None, angle=0.0, *, approach=None,
+            p0=None) -> Contact:
     """Hertz point contact of two elastic bodies pressed together.
 
     Parameters
@@ -279,27 +331,43 @@ def contact(body1: Body, body2: Body, load=None, angle=0.0, *, approach=None) ->
     body1, body2 : Body
         The two bodies; every field may be an array (all broadcast together).
     load : float or array_like, optional
-        Normal force P [N], >= 0.  Give exactly one of ``load`` and ``approach``.
+        Normal force P [N], >= 0.  Give exactly one of ``load``, ``approach``
+        and ``p0``.
     angle : float or array_like, optional
         Angle from body 1's x axis to body 2's x axis [rad] (default 0: the
         principal planes coincide).
     approach : float or array_like, optional
         Approach delta of distant points of the bodies [m], >= 0 (the
         overlap of a DEM code); the load is then computed.
+    p0 : float or array_like, optional
+        Peak pressure [Pa], >= 0; the load is then computed.
 
     Returns
     -------
     Contact
-        Semi-axes, pressure, approach, stiffness and the ellipse parameters.
+        Semi-axes, pressure, approach, stiffness and the ellipse parameters:
+        Python floats for scalar input, else arrays of the broadcast shape.
+        Dask arrays in give a Contact of dask arrays, computed (and checked)
+        only when asked.
 
     Raises
     ------
     TypeError
-        If a body is not a :class:`Body` or an argument is not numeric.
+        If a body is not a :class:`Body`, an argument is not numeric, or not
+        exactly one of load, approach and p0 is given.
     ValueError
-        For a negative, infinite or NaN load or approach, a non-finite angle,
-        shapes that do not broadcast, and bodies without a Hertz point contact
-        (line contacts, plane on plane, over-conforming concave surfaces).
+        For a negative, infinite or NaN load, approach or p0, a non-finite
+        angle, shapes that do not broadcast, and bodies without a Hertz point
+        contact (line contacts, plane on plane, over-conforming concave
+        surfaces, or a curvature ratio beyond the double range).  The message
+        names the parameter, the value and, for arrays, the index.
+
+    Notes
+    -----
+    Every field is within a few ulp of an exact evaluation for any input
+    whose true results are normal doubles: radii from 1e-308 to 1e308,
+    nearly conforming surfaces at any angle, loads from 1e-300 to 1e300.
+    Swapping the bodies (and the sign of the angle) gives the same bits.
 
     Examples
     --------
@@ -313,40 +381,50 @@ def contact(body1: Body, body2: Body, load=None, angle=0.0, *, approach=None) ->
     a = 1.8387 mm, b = 0.1866 mm, p0 = 2.087 GPa
     >>> round(hertz.contact(ball, race, approach=c.delta).load, 9)
     1500.0
+    >>> print(f"{hertz.contact(ball, race, p0=2e9).load:.1f} N gives p0 = 2 GPa")
+    1319.7 N gives p0 = 2 GPa
     """
-    if (load is None) == (approach is None):
-        raise TypeError("give exactly one of load (N) and approach (m)")
-    if load is not None:
-        given = {"load": _nonnegative(load, "load", "N")}
+    if approach is None and p0 is None:
+        if load is None:
+            raise TypeError("give exactly one of load (N), approach (m) and p0 (Pa)")
+        name, value = "load", load
+    elif (load is None) + (approach is None) + (p0 is None) != 2:
+        raise TypeError("give exactly one of load (N), approach (m) and p0 (Pa)")
     else:
-        given = {"approach": _nonnegative(approach, "approach", "m")}
-    curv, e_star, shape = _curvatures_and_moduli(body1, body2, angle, **given)
-    (value,) = given.values()
-    err = _no_contact(curv.rho_x, curv.rho_y)
-    if err is not None:
-        raise err
-    rho_sum = curv.rho_x + curv.rho_y
-    sol = solve_ellipse(curv.rho_x / curv.rho_y)
-    lam, K, E = sol.ellipticity, sol.K, sol.E
-    # P = C delta**1.5, from delta = (K/2) (9 rho_+ q**2 / E)**(1/3), q = P/(pi lam E*).
-    c_load = np.pi * lam * e_star * np.sqrt((2.0 / K) ** 3 * E / (9.0 * rho_sum))
-    if load is not None:
-        P = value
-        q = P / (np.pi * lam * e_star)
-        delta = 0.5 * K * np.cbrt(9.0 * rho_sum * q * q / E)
-    else:
-        delta = value
-        P = c_load * delta * np.sqrt(delta)
-        q = P / (np.pi * lam * e_star)
-    b = np.cbrt(3.0 * E * q / rho_sum)
-    a = lam * b
-    p0 = 1.5 * e_star * np.cbrt(q * rho_sum * rho_sum / (9.0 * E * E))
-    fields = dict(
-        a=a, b=b, ellipticity=lam, alpha=curv.rho_x / curv.rho_y, m=sol.m, K=K, E=E,
-        e_star=e_star, rho_x=curv.rho_x, rho_y=curv.rho_y, rho_sum=rho_sum,
-        major_axis_angle=curv.major_axis_angle, load=P, p0=p0, p_mean=p0 * (2.0 / 3.0),
-        area=np.pi * a * b, delta=delta, stiffness=1.5 * c_load * np.sqrt(delta))
-    return Contact(**{k: _scalar_or_array(np.broadcast_to(v, shape)) for k, v in fields.items()})
+        name, value = ("approach", approach) if p0 is None else ("p0", p0)
+    mode, fused, given = _MODES[name]
+    _check_body(body1, "body1")
+    _check_body(body2, "body2")
+    kind_v, kind_a = type(value), type(angle)
+    if (body1._scalar and body2._scalar and (kind_v is float or kind_v is int)
+            and (kind_a is float or kind_a is int)):
+        return Contact(*_ufuncs.contact(mode, body1.Rx, body1.Ry, body2.Rx, body2.Ry, angle,
+                                        body1.E, body1.nu, body2.E, body2.nu, value))
+    args = [body1.Rx, body1.Ry, body2.Rx, body2.Ry, _real_arg(angle, "angle"), body1.E,
+            body1.nu, body2.E, body2.nu, _real_arg(value, name)]
+    if any(is_duck_array(a) for a in args):
+        return Contact(*_dask_apply(fused, args, len(_CONTACT_FIELDS)))
+    geometry_shape = broadcast_shape(**dict(zip(_GEOMETRY_NAMES, args, strict=False)))
+    shape = broadcast_shape(**dict(zip(_GEOMETRY_NAMES, args, strict=False)), **{name: args[9]})
+    try:
+        if math.prod(geometry_shape) == math.prod(shape):
+            return _finish(fused(*args), Contact)
+        # One geometry carries many loads: solve each geometry once and
+        # broadcast its fields (read-only views) over the loads.
+        geo = _ufuncs.contact_geometry(*args[:9])
+        a, b, P, p_peak, delta, stiffness = given(geo[0], *geo[9:], args[9])
+        view = [np.broadcast_to(x, shape) for x in geo[:9]]
+        return Contact(a, b, *view[:3], *view[3:9], P, p_peak, delta, stiffness)
+    except ValueError as exc:
+        err = _first_error(_ufuncs.contact_status, _ufuncs.contact, args, shape, (mode,))
+        raise (err or exc) from None
+
+
+def _real_arg(value, name):
+    """A float64 array (no copy for float64 input) or a duck array, for one call."""
+    if type(value) is float or is_duck_array(value):
+        return value
+    return as_float_array(value, name)
 
 
 def line_contact(body1: Body, body2: Body, load_per_length) -> LineContact:
@@ -365,6 +443,14 @@ def line_contact(body1: Body, body2: Body, load_per_length) -> LineContact:
     LineContact
         half_width = (4 P' / (pi E* rho))**(1/2), p0 = 2 P' / (pi half_width).
 
+    Raises
+    ------
+    TypeError
+        If a body is not a :class:`Body` or an argument is not numeric.
+    ValueError
+        For a negative, infinite or NaN load, or bodies that do not make a
+        line contact (the message names the value and, for arrays, the index).
+
     Examples
     --------
     >>> import hertz
@@ -373,20 +459,22 @@ def line_contact(body1: Body, body2: Body, load_per_length) -> LineContact:
     >>> print(f"{lc.half_width * 1e6:.2f} um, {lc.p0 / 1e9:.4f} GPa")
     74.28 um, 0.8571 GPa
     """
-    load = _nonnegative(load_per_length, "load_per_length", "N/m")
-    curv, e_star, shape = _curvatures_and_moduli(body1, body2, 0.0, load_per_length=load)
-    line = (curv.rho_x > 0) & (curv.rho_y == 0)
-    if not line.all():
-        i = int(np.argmin(line.reshape(-1)))
-        rx, ry = float(curv.rho_x.reshape(-1)[i]), float(curv.rho_y.reshape(-1)[i])
-        raise ValueError(
-            f"not a line contact{index_text(line.shape, i)}: the principal relative curvatures "
-            f"are {rx:g} and {ry:g} 1/m; a line contact needs one of them 0 and the other "
-            "positive (use hertz.contact for a point contact)")
-    rho = curv.rho_x
-    half_width = np.sqrt(4.0 * load / (np.pi * e_star * rho))
-    p0 = np.sqrt(load * e_star * rho / np.pi)
-    fields = dict(half_width=half_width, p0=p0, p_mean=0.25 * np.pi * p0,
-                  load_per_length=load, e_star=e_star, rho_sum=rho)
-    return LineContact(**{k: _scalar_or_array(np.broadcast_to(v, shape))
-                          for k, v in fields.items()})
+    _check_body(body1, "body1")
+    _check_body(body2, "body2")
+    kind = type(load_per_length)
+    if body1._scalar and body2._scalar and (kind is float or kind is int):
+        return LineContact(*_ufuncs.line_contact(body1.Rx, body1.Ry, body2.Rx, body2.Ry,
+                                                 body1.E, body1.nu, body2.E, body2.nu,
+                                                 load_per_length))
+    args = [body1.Rx, body1.Ry, body2.Rx, body2.Ry, body1.E, body1.nu, body2.E, body2.nu,
+            _real_arg(load_per_length, "load_per_length")]
+    if any(is_duck_array(a) for a in args):
+        return LineContact(*_dask_apply(_ufuncs.line, args, 5))
+    names = [n for n in _GEOMETRY_NAMES if n != "angle"] + ["load_per_length"]
+    shape = broadcast_shape(**dict(zip(names, args, strict=True)))
+    try:
+        return _finish(_ufuncs.line(*args), LineContact)
+    except ValueError as exc:
+        err = _first_error(_ufuncs.line_status, _ufuncs.line_contact, args, shape)
+        raise (err or exc) from None
+

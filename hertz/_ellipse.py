@@ -6,7 +6,7 @@ Conventions (used everywhere in hertz): the elliptic integrals take the
     m = 1 - (b / a)**2,   lambda = a / b = (1 - m)**(-1/2)
 
 for an ellipse of semi-axes a >= b.  The numerical work is done by the
-compiled kernel ``hertz._kernel`` (see the comment at the top of
+compiled ufuncs of ``hertz._ufuncs`` (see the comment at the top of
 ``hertz/_kernel.c`` for the algorithm and the seed's equations it implements).
 """
 
@@ -16,13 +16,17 @@ from typing import NamedTuple
 
 import numpy as np
 
-from . import _kernel
-from ._validate import as_float_array, error_at
+from . import _ufuncs
+from ._validate import as_float_array, first_failure, is_duck_array, with_index
 
 #: Bailey steps taken by default; one reaches full double precision.
 DEFAULT_ITERATIONS = 1
 #: Largest number of Bailey steps accepted (more change nothing).
 MAX_ITERATIONS = 3
+
+_ELLIPTICITY = (_ufuncs.ellipticity0, _ufuncs.ellipticity1, _ufuncs.ellipticity2,
+                _ufuncs.ellipticity3)
+_ELLIPSE = (_ufuncs.ellipse0, _ufuncs.ellipse1)
 
 
 class EllipseSolution(NamedTuple):
@@ -34,33 +38,38 @@ class EllipseSolution(NamedTuple):
     E: np.ndarray
 
 
-def _check_iterations(iterations) -> int:
+def _check_iterations(iterations, most=MAX_ITERATIONS) -> int:
     if isinstance(iterations, bool) or not isinstance(iterations, (int, np.integer)):
         raise TypeError(f"iterations must be an integer, got {iterations!r}")
-    if not 0 <= iterations <= MAX_ITERATIONS:
-        raise ValueError(f"iterations must be in 0 .. {MAX_ITERATIONS}, got {iterations}")
+    if not 0 <= iterations <= most:
+        raise ValueError(f"iterations must be in 0 .. {most}, got {iterations}")
     return int(iterations)
 
 
-def solve_ellipse(alpha: np.ndarray, iterations: int = DEFAULT_ITERATIONS,
-                  with_integrals: bool = True) -> EllipseSolution:
-    """lambda(alpha) and m, K(m), E(m) at the root for a clean float64 array.
+def _indexed(ufunc, arr: np.ndarray, exc: ValueError) -> ValueError:
+    """The loop's error, re-made for the first bad element in C order, with its index."""
+    i = first_failure(arr > 0)
+    try:
+        ufunc(float(arr.reshape(-1)[i]))
+    except ValueError as one:
+        return with_index(one, arr.shape, i)
+    return exc  # pragma: no cover - the scan and the loop agree on what is bad
 
-    ``alpha`` must already be a float64 ndarray (any shape).  With
-    ``with_integrals=False`` the m, K, E fields are None.
+
+def solve_ellipse(alpha, iterations: int = DEFAULT_ITERATIONS) -> EllipseSolution:
+    """lambda(alpha) and m, K(m), E(m) at the root, float64 arrays of alpha's shape.
+
+    ``iterations`` is 0 (the start) or 1 (one Bailey step, full precision).
     """
-    flat = np.ascontiguousarray(alpha, dtype=np.float64).reshape(-1)
-    lam = np.empty_like(flat)
-    extra = [np.empty_like(flat) for _ in range(3)] if with_integrals else [None] * 3
-    bad = _kernel.solve(flat, lam, *extra, iterations)
-    if bad >= 0:
-        raise error_at("alpha", np.asarray(alpha), bad, "a positive number (rho_x / rho_y > 0)")
-    shape = np.shape(alpha)
-    return EllipseSolution(lam.reshape(shape),
-                           *(None if x is None else x.reshape(shape) for x in extra))
+    ufunc = _ELLIPSE[_check_iterations(iterations, most=1)]
+    arr = as_float_array(alpha, "alpha")
+    try:
+        return EllipseSolution(*ufunc(arr))
+    except ValueError as exc:
+        raise _indexed(ufunc, arr, exc) from None
 
 
-def ellipticity(alpha, *, iterations=DEFAULT_ITERATIONS):
+def ellipticity(alpha, *, iterations=DEFAULT_ITERATIONS, out=None):
     """Axis ratio of the Hertz contact ellipse for a curvature ratio.
 
     Solves ``alpha = (lambda**2 E(m) - K(m)) / (K(m) - E(m))`` with
@@ -68,6 +77,11 @@ def ellipticity(alpha, *, iterations=DEFAULT_ITERATIONS):
     Iizuka & Takada) for ``lambda = l_y / l_x``, the ratio of the contact
     semi-axis along y to the one along x, given ``alpha = rho_x / rho_y``,
     the ratio of the relative curvatures along x and y.
+
+    Elementwise like a numpy ufunc: any real dtype in, float64 out,
+    broadcasting, ``out=``, and arrays of other libraries (dask) handled by
+    their ``__array_ufunc__``: a dask array in gives a dask array out,
+    computed only when asked.
 
     Parameters
     ----------
@@ -79,12 +93,15 @@ def ellipticity(alpha, *, iterations=DEFAULT_ITERATIONS):
         to a few units in the last place (measured maximum relative error
         4e-16 on 1 <= alpha <= 1e15); 0 returns the start, about six times
         faster and accurate to 3e-8.
+    out : ndarray, optional
+        Where to put the result, as for a ufunc.
 
     Returns
     -------
     float or ndarray
         lambda >= 1 for alpha >= 1 (and lambda < 1 for alpha < 1), dimensionless.
-        A Python float for scalar input, else a float64 array of alpha's shape.
+        A Python float for scalar input, else a float64 array of alpha's shape
+        (or ``out``).
 
     Raises
     ------
@@ -92,7 +109,7 @@ def ellipticity(alpha, *, iterations=DEFAULT_ITERATIONS):
         If alpha is not real-valued numeric data.
     ValueError
         If any alpha is zero, negative or NaN (the message gives the value
-        and its index).
+        and, for an array, its index).
 
     See Also
     --------
@@ -114,7 +131,17 @@ def ellipticity(alpha, *, iterations=DEFAULT_ITERATIONS):
     >>> hertz.ellipticity([0.1, 1.0, 10.0]).round(6)
     array([0.22225 , 1.      , 4.499447])
     """
-    iterations = _check_iterations(iterations)
+    if iterations == 1 and type(iterations) is int:
+        ufunc = _ufuncs.ellipticity1
+    else:
+        ufunc = _ELLIPTICITY[_check_iterations(iterations)]
+    if out is None and type(alpha) is float:
+        return float(ufunc(alpha))
+    if is_duck_array(alpha):
+        return ufunc(alpha) if out is None else ufunc(alpha, out=out)
     arr = as_float_array(alpha, "alpha")
-    lam = solve_ellipse(arr, iterations, with_integrals=False).ellipticity
-    return float(lam) if lam.ndim == 0 else lam
+    try:
+        lam = ufunc(arr) if out is None else ufunc(arr, out=out)
+    except ValueError as exc:
+        raise _indexed(ufunc, arr, exc) from None
+    return float(lam) if out is None and lam.ndim == 0 else lam

@@ -36,21 +36,24 @@
  * lambda^2 = alpha (L - 1), L = ln(4 lambda), to a relative O(1/alpha) and is
  * solved directly.  alpha < 1 uses lambda(alpha) = 1/lambda(1/alpha); 1/alpha
  * only picks the start, the residual of (2) uses alpha itself.
+ *
+ * Pure C: the numpy binding is in _ufuncs.c, the contact formulas built on
+ * this solver in _contact_kernel.c.
  */
-#define PY_SSIZE_T_CLEAN
-#include <Python.h>
 #include <math.h>
+#include <stddef.h>
 #include <stdint.h>
 #include <string.h>
 
 #include "_coefficients.h"
+#include "_kernel.h"
 
 /* With GCC or Clang on x86-64 Linux, the block functions are also compiled for
  * AVX2 and the better one is chosen at load time; the vectorised stages then
  * take four elements at a time.  Elementwise operations round the same way at
  * any vector width (and -ffp-contract=off forbids fused multiply-adds), so
  * both versions give the same bits. */
-#if defined(__GNUC__) && defined(__x86_64__) && defined(__linux__)
+#if defined(__GNUC__) && defined(__x86_64__) && defined(__linux__) && !defined(HERTZ_PLAIN)
 #define MULTIVERSION __attribute__((target_clones("avx2", "default")))
 #else
 #define MULTIVERSION
@@ -74,9 +77,12 @@ horner(const double *c, int degree, double x)
  * n <= BLOCK points.  m and p are passed separately so that each can carry
  * full relative precision (m near 0, p near 0). */
 #define BLOCK 64
+#if BLOCK != HERTZ_BLOCK
+#error "BLOCK and HERTZ_BLOCK must agree"
+#endif
 
 MULTIVERSION static void
-associate_integrals(Py_ssize_t n, const double *m, const double *p,
+associate_integrals(ptrdiff_t n, const double *m, const double *p,
                     double *B, double *D, double *V)
 {
     double l1[BLOCK];
@@ -84,10 +90,10 @@ associate_integrals(Py_ssize_t n, const double *m, const double *p,
      *   mD = Q_D (L - 1) + P_D,  mB = Q_B L + P_B  (valid for p < P_LOG_MAX).
      * Evaluated for every element (the loop vectorises); the Landen branch
      * below overwrites the elements with m <= M_LANDEN_MAX. */
-    for (Py_ssize_t i = 0; i < n; ++i) {
+    for (ptrdiff_t i = 0; i < n; ++i) {
         l1[i] = LN4_MINUS_1 - 0.5 * log(p[i]);
     }
-    for (Py_ssize_t i = 0; i < n; ++i) {
+    for (ptrdiff_t i = 0; i < n; ++i) {
         double x = p[i];
         double md = horner(BD_LOG_QD, LOG_DEGREE, x) * l1[i] + horner(BD_LOG_PD, LOG_DEGREE, x);
         double mb = horner(BD_LOG_QB, LOG_DEGREE, x) * (l1[i] + 1.0)
@@ -97,7 +103,7 @@ associate_integrals(Py_ssize_t n, const double *m, const double *p,
         B[i] = mb * im;
         V[i] = (mb - x * md) * im * im;
     }
-    for (Py_ssize_t i = 0; i < n; ++i) {
+    for (ptrdiff_t i = 0; i < n; ++i) {
         if (m[i] > M_LANDEN_MAX) {
             continue;
         }
@@ -157,8 +163,8 @@ solve_closed_form(double alpha, int flip, double *lam, double *m, double *K, dou
  * processed one stage at a time, so that the processor overlaps independent
  * elements (and the compiler vectorises the branch-free stages) instead of
  * waiting on the dependency chain of one. */
-MULTIVERSION static Py_ssize_t
-solve_block(const double *alpha, Py_ssize_t n, int iterations,
+MULTIVERSION static ptrdiff_t
+solve_block(const double *alpha, ptrdiff_t n, int iterations,
             double *lam, double *mo, double *ko, double *eo)
 {
     double m[BLOCK], p[BLOCK], B[BLOCK], D[BLOCK], V[BLOCK], dm[BLOCK], inv_m[BLOCK];
@@ -168,7 +174,7 @@ solve_block(const double *alpha, Py_ssize_t n, int iterations,
     int start_only = iterations == 0 && !mo && !ko && !eo;
 
     /* Stage 1: checks, closed-form cases, start. */
-    for (Py_ssize_t i = 0; i < n; ++i) {
+    for (ptrdiff_t i = 0; i < n; ++i) {
         double a = alpha[i];
         if (!(a > 0.0)) {
             return i;
@@ -219,7 +225,7 @@ solve_block(const double *alpha, Py_ssize_t n, int iterations,
         /* Stage 2: B, D, V at the current point. */
         associate_integrals(n, m, p, B, D, V);
         /* Stage 3: one Bailey step, eq. (2), on f(x) = ln(B/(p D alpha')). */
-        for (Py_ssize_t i = 0; i < n; ++i) {
+        for (ptrdiff_t i = 0; i < n; ++i) {
             double a = alpha[i], mi = m[i], pi = p[i], b = B[i], d = D[i], v = V[i];
             int flip = a < 1.0;
             /* w = B/(p D alpha') - 1, for small m from R - 1 = m V/(p D).
@@ -255,7 +261,7 @@ solve_block(const double *alpha, Py_ssize_t n, int iterations,
     }
 
     /* Stage 4: outputs (elements solved in stage 1 keep their values). */
-    for (Py_ssize_t i = 0; i < n; ++i) {
+    for (ptrdiff_t i = 0; i < n; ++i) {
         double mi = m[i], pi = p[i];
         double kp = sqrt(pi);
         double near_one = 1.0 + mi / (kp * (1.0 + kp)); /* keeps lambda - 1 accurate */
@@ -264,7 +270,7 @@ solve_block(const double *alpha, Py_ssize_t n, int iterations,
         lam[i] = done[i] ? lam[i] : l;
     }
     if (mo) {
-        for (Py_ssize_t i = 0; i < n; ++i) {
+        for (ptrdiff_t i = 0; i < n; ++i) {
             mo[i] = done[i] ? mo[i] : m[i];
         }
     }
@@ -277,13 +283,13 @@ solve_block(const double *alpha, Py_ssize_t n, int iterations,
      * = 0) they are those of the start. */
     double K[BLOCK], E[BLOCK];
     if (iterations == 0) {
-        for (Py_ssize_t i = 0; i < n; ++i) {
+        for (ptrdiff_t i = 0; i < n; ++i) {
             K[i] = B[i] + D[i];
             E[i] = B[i] + p[i] * D[i];
         }
     }
     else {
-        for (Py_ssize_t i = 0; i < n; ++i) {
+        for (ptrdiff_t i = 0; i < n; ++i) {
             double a = alpha[i], pi = p[i], h = dm[i], d = D[i], v = V[i];
             double p0 = pi + h, ip0 = 1.0 / p0;
             double d1 = 0.5 * v * ip0;
@@ -296,14 +302,14 @@ solve_block(const double *alpha, Py_ssize_t n, int iterations,
             E[i] = flip ? pi * droot * (1.0 + a) * ia : pi * droot * (1.0 + a);
         }
     }
-    for (Py_ssize_t i = 0; i < n; ++i) {
+    for (ptrdiff_t i = 0; i < n; ++i) {
         if (ko) ko[i] = done[i] ? ko[i] : K[i];
         if (eo) eo[i] = done[i] ? eo[i] : E[i];
     }
     return -1;
 }
 
-#if defined(__GNUC__) && defined(__x86_64__)
+#if defined(__GNUC__) && defined(__x86_64__) && !defined(HERTZ_PLAIN)
 #include <immintrin.h>
 #define HAVE_AVX2_START 1
 
@@ -313,8 +319,8 @@ solve_block(const double *alpha, Py_ssize_t n, int iterations,
  * results are the same bits.  A group of four with an element outside
  * 1 <= alpha < 2^64 (alpha < 1, closed forms, bad input) goes through
  * solve_block instead.  Returns -1 or the index of the first bad alpha. */
-__attribute__((target("avx2"))) static Py_ssize_t
-start_only_avx2(const double *alpha, Py_ssize_t n, double *lam)
+__attribute__((target("avx2"))) static ptrdiff_t
+start_only_avx2(const double *alpha, ptrdiff_t n, double *lam)
 {
     const __m256d one = _mm256_set1_pd(1.0), top = _mm256_set1_pd(0x1p64);
     const __m256d two = _mm256_set1_pd(2.0), eight = _mm256_set1_pd(8.0);
@@ -324,13 +330,13 @@ start_only_avx2(const double *alpha, Py_ssize_t n, double *lam)
     const __m256i bias = _mm256_set1_epi64x(4 * 1023), three = _mm256_set1_epi64x(3);
     const __m256i two52_bits = _mm256_set1_epi64x(0x4330000000000000ll);
     const double *table = &START_R[0][0];
-    Py_ssize_t i = 0;
+    ptrdiff_t i = 0;
     for (; i + 4 <= n; i += 4) {
         __m256d a = _mm256_loadu_pd(alpha + i);
         __m256d plain = _mm256_and_pd(_mm256_cmp_pd(a, one, _CMP_GE_OQ),
                                       _mm256_cmp_pd(a, top, _CMP_LT_OQ));
         if (_mm256_movemask_pd(plain) != 0xF) {
-            Py_ssize_t r = solve_block(alpha + i, 4, 0, lam + i, NULL, NULL, NULL);
+            ptrdiff_t r = solve_block(alpha + i, 4, 0, lam + i, NULL, NULL, NULL);
             if (r >= 0) {
                 return i + r;
             }
@@ -363,7 +369,7 @@ start_only_avx2(const double *alpha, Py_ssize_t n, double *lam)
         _mm256_storeu_pd(lam + i, _mm256_sqrt_pd(_mm256_mul_pd(a, h)));
     }
     if (i < n) {
-        Py_ssize_t r = solve_block(alpha + i, n - i, 0, lam + i, NULL, NULL, NULL);
+        ptrdiff_t r = solve_block(alpha + i, n - i, 0, lam + i, NULL, NULL, NULL);
         if (r >= 0) {
             return i + r;
         }
@@ -393,186 +399,51 @@ avx2_enabled(void)
 }
 #endif
 
-/* ---------------------------------------------------------------- Python API */
+/* ------------------------------------------------------------- entry points */
 
-static int
-get_output(PyObject *obj, Py_buffer *view, Py_ssize_t n, const char *name)
+ptrdiff_t
+hertz_ellipse_block(const double *alpha, ptrdiff_t n, int iterations,
+                    double *lam, double *m, double *K, double *E)
 {
-    if (obj == Py_None) {
-        view->buf = NULL;
-        view->obj = NULL;
-        return 0;
-    }
-    if (PyObject_GetBuffer(obj, view, PyBUF_WRITABLE | PyBUF_C_CONTIGUOUS) < 0) {
-        return -1;
-    }
-    if (view->len != n * (Py_ssize_t)sizeof(double)) {
-        PyErr_Format(PyExc_ValueError, "%s: expected %zd doubles", name, n);
-        PyBuffer_Release(view);
-        view->buf = NULL;
-        view->obj = NULL;
-        return -1;
-    }
-    return 0;
+    return solve_block(alpha, n, iterations, lam, m, K, E);
 }
 
-static void
-release(Py_buffer *views, int count)
+ptrdiff_t
+hertz_ellipse_solve(const double *alpha, ptrdiff_t n, int iterations,
+                    double *lam, double *m, double *K, double *E)
 {
-    for (int i = 0; i < count; ++i) {
-        if (views[i].obj != NULL) {
-            PyBuffer_Release(&views[i]);
-        }
-    }
-}
-
-PyDoc_STRVAR(solve_doc,
-"solve(alpha, lam, m, K, E, iterations) -> int\n\n"
-"Fill lam (and m, K, E unless None) for each alpha; all are C-contiguous\n"
-"float64 buffers of one length.  Returns the index of the first alpha that\n"
-"is not a positive number, or -1.  Private: use hertz.ellipticity.");
-
-static PyObject *
-py_solve(PyObject *self, PyObject *args)
-{
-    Py_buffer in;
-    PyObject *objs[4];
-    Py_buffer out[4] = {{0}};
-    int iterations;
-    if (!PyArg_ParseTuple(args, "y*OOOOi", &in, &objs[0], &objs[1], &objs[2], &objs[3],
-                          &iterations)) {
-        return NULL;
-    }
-    Py_ssize_t n = in.len / (Py_ssize_t)sizeof(double);
-    static const char *names[4] = {"lam", "m", "K", "E"};
-    for (int i = 0; i < 4; ++i) {
-        if (get_output(objs[i], &out[i], n, names[i]) < 0) {
-            release(out, i);
-            PyBuffer_Release(&in);
-            return NULL;
-        }
-    }
-    if (out[0].buf == NULL || iterations < 0) {
-        release(out, 4);
-        PyBuffer_Release(&in);
-        PyErr_SetString(PyExc_ValueError, "lam is required and iterations must be >= 0");
-        return NULL;
-    }
-    const double *alpha = (const double *)in.buf;
-    double *lam = out[0].buf, *mo = out[1].buf, *ko = out[2].buf, *eo = out[3].buf;
-    Py_ssize_t bad = -1;
-    int start_only = iterations == 0 && !mo && !ko && !eo;
-    Py_BEGIN_ALLOW_THREADS
 #if HAVE_AVX2_START
-    if (start_only && avx2_enabled()) {
-        bad = start_only_avx2(alpha, n, lam);
-        n = 0; /* done */
+    if (iterations == 0 && !m && !K && !E && avx2_enabled()) {
+        return start_only_avx2(alpha, n, lam);
     }
 #endif
-    for (Py_ssize_t i = 0; i < n; i += BLOCK) {
-        Py_ssize_t len = n - i < BLOCK ? n - i : BLOCK;
-        Py_ssize_t r = solve_block(alpha + i, len, iterations, lam + i, mo ? mo + i : NULL,
-                                   ko ? ko + i : NULL, eo ? eo + i : NULL);
+    for (ptrdiff_t i = 0; i < n; i += BLOCK) {
+        ptrdiff_t len = n - i < BLOCK ? n - i : BLOCK;
+        ptrdiff_t r = solve_block(alpha + i, len, iterations, lam + i, m ? m + i : NULL,
+                                  K ? K + i : NULL, E ? E + i : NULL);
         if (r >= 0) {
-            bad = i + r;
-            break;
+            return i + r;
         }
     }
-    Py_END_ALLOW_THREADS
-    release(out, 4);
-    PyBuffer_Release(&in);
-    return PyLong_FromSsize_t(bad);
+    return -1;
 }
 
-PyDoc_STRVAR(assoc_doc,
-"associate_integrals(m, p, B, D, V) -> None\n\n"
-"Fill B(m), D(m) and V(m) = (B - pD)/m for 0 < m < 1 with p = 1 - m given\n"
-"separately (so that either can carry full relative precision).  Private:\n"
-"exposed for the accuracy tests of the special-function layer.");
-
-static PyObject *
-py_associate_integrals(PyObject *self, PyObject *args)
+void
+hertz_associate_integrals(ptrdiff_t n, const double *m, const double *p,
+                          double *B, double *D, double *V)
 {
-    Py_buffer mb, pb;
-    PyObject *objs[3];
-    Py_buffer out[3] = {{0}};
-    if (!PyArg_ParseTuple(args, "y*y*OOO", &mb, &pb, &objs[0], &objs[1], &objs[2])) {
-        return NULL;
-    }
-    Py_ssize_t n = mb.len / (Py_ssize_t)sizeof(double);
-    static const char *names[3] = {"B", "D", "V"};
-    int ok = pb.len == mb.len;
-    for (int i = 0; ok && i < 3; ++i) {
-        if (get_output(objs[i], &out[i], n, names[i]) < 0 || out[i].buf == NULL) {
-            release(out, i + 1);
-            PyBuffer_Release(&mb);
-            PyBuffer_Release(&pb);
-            if (!PyErr_Occurred()) {
-                PyErr_Format(PyExc_ValueError, "%s is required", names[i]);
-            }
-            return NULL;
-        }
-    }
-    if (!ok) {
-        PyBuffer_Release(&mb);
-        PyBuffer_Release(&pb);
-        PyErr_SetString(PyExc_ValueError, "m and p must have the same length");
-        return NULL;
-    }
-    const double *m = mb.buf, *p = pb.buf;
-    double *B = out[0].buf, *D = out[1].buf, *V = out[2].buf;
-    for (Py_ssize_t i = 0; i < n; i += BLOCK) {
-        Py_ssize_t len = n - i < BLOCK ? n - i : BLOCK;
+    for (ptrdiff_t i = 0; i < n; i += BLOCK) {
+        ptrdiff_t len = n - i < BLOCK ? n - i : BLOCK;
         associate_integrals(len, m + i, p + i, B + i, D + i, V + i);
     }
-    release(out, 3);
-    PyBuffer_Release(&mb);
-    PyBuffer_Release(&pb);
-    Py_RETURN_NONE;
 }
 
-PyDoc_STRVAR(simd_doc,
-"simd(enable=None) -> bool\n\n"
-"Whether the AVX2 start-only path is used (it gives the same bits as the\n"
-"scalar code); with enable, switch it on or off first (on only if the CPU\n"
-"has AVX2).  Private: for tests and benchmarks.");
-
-static PyObject *
-py_simd(PyObject *self, PyObject *args)
+int
+hertz_simd(int enable)
 {
-    PyObject *enable = Py_None;
-    if (!PyArg_ParseTuple(args, "|O", &enable)) {
-        return NULL;
-    }
-    if (enable != Py_None) {
-        int on = PyObject_IsTrue(enable);
-        if (on < 0) {
-            return NULL;
-        }
+    if (enable >= 0) {
         use_avx2 = -1;
-        use_avx2 = on ? avx2_enabled() : 0;
+        use_avx2 = enable ? avx2_enabled() : 0;
     }
-    return PyBool_FromLong(avx2_enabled());
-}
-
-static PyMethodDef methods[] = {
-    {"solve", py_solve, METH_VARARGS, solve_doc},
-    {"simd", py_simd, METH_VARARGS, simd_doc},
-    {"associate_integrals", py_associate_integrals, METH_VARARGS, assoc_doc},
-    {NULL, NULL, 0, NULL},
-};
-
-static struct PyModuleDef module = {
-    PyModuleDef_HEAD_INIT, "_kernel",
-    "Compiled core of hertz.ellipticity (private).", -1, methods,
-};
-
-PyMODINIT_FUNC
-PyInit__kernel(void)
-{
-    PyObject *mod = PyModule_Create(&module);
-    if (mod == NULL) {
-        return NULL;
-    }
-    return mod;
+    return avx2_enabled();
 }

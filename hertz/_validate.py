@@ -50,6 +50,27 @@ def require(name: str, arr: np.ndarray, ok: np.ndarray, allowed: str) -> None:
         raise error_at(name, arr, int(np.argmin(ok.reshape(-1))), allowed)
 
 
+def first_failure(ok: np.ndarray) -> int:
+    """Flat index (C order) of the first element where ``ok`` is false."""
+    return int(np.argmin(np.asarray(ok).reshape(-1)))
+
+
+def with_index(exc: ValueError, shape: tuple[int, ...], flat_index: int) -> ValueError:
+    """``exc``'s message for element ``flat_index`` of an array of ``shape``, with its index:
+    after the offending value (``..., got -1.0 at index 3``) or in front of a sentence."""
+    where = index_text(shape, flat_index)
+    if not where or ", got " in str(exc):
+        return ValueError(f"{exc}{where}")
+    return ValueError(f"{where.strip()}: {exc}")
+
+
+def is_duck_array(value) -> bool:
+    """Whether ``value`` is an array of another library (dask, ...) that numpy
+    dispatches to through ``__array_ufunc__``: such input is passed on unconverted."""
+    return (hasattr(value, "__array_ufunc__") and not isinstance(value, (np.ndarray, np.generic))
+            and value.__array_ufunc__ is not None)
+
+
 def broadcast_shape(**arrays) -> tuple[int, ...]:
     """The common shape of named arrays; the error names the parameters and shapes."""
     try:

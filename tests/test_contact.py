@@ -200,7 +200,7 @@ def test_parallel_cylinders_point_to_line_contact():
     cyl = hertz.Body.cylinder(0.01, **STEEL)
     with pytest.raises(ValueError, match=r"line contact.*hertz\.line_contact"):
         hertz.contact(cyl, cyl, load=1.0)
-    with pytest.raises(ValueError, match=r"line contact at index 1"):
+    with pytest.raises(ValueError, match=r"^at index 1: the bodies make a line contact"):
         hertz.contact(cyl, cyl, load=1.0, angle=[0.3, 0.0])
     with pytest.raises(ValueError, match=r"not a line contact.*hertz\.contact"):
         hertz.line_contact(cyl, cyl.sphere(0.01, **STEEL), 1.0)

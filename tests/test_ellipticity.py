@@ -165,20 +165,20 @@ def test_bad_iterations(bad, exc):
 
 def test_vector_start_path_gives_the_same_bits():
     """The AVX2 start-only path (where the CPU has it) against the scalar code."""
-    from hertz import _kernel
+    from hertz import _ufuncs
 
     rng = np.random.default_rng(5)
     alpha = np.concatenate([ALPHA, np.exp(rng.uniform(-50, 50, 10_001)),
                             [1.0, 2.0**64, np.nextafter(2.0**64, 0), np.inf, 5e-324]])
-    before = _kernel.simd()
+    before = _ufuncs.simd()
     try:
-        _kernel.simd(True)
+        _ufuncs.simd(True)
         fast = hertz.ellipticity(alpha, iterations=0)
-        _kernel.simd(False)
-        assert not _kernel.simd()
+        _ufuncs.simd(False)
+        assert not _ufuncs.simd()
         scalar = hertz.ellipticity(alpha, iterations=0)
     finally:
-        _kernel.simd(before)
+        _ufuncs.simd(before)
     np.testing.assert_array_equal(fast, scalar)
     for bad in ([2.0, 3.0, 4.0, 5.0, 6.0, -1.0], [np.nan] * 9):
         with pytest.raises(ValueError, match="alpha"):

@@ -1,0 +1,33 @@
+/*
+ * The contact-ellipse solver (hertz/_kernel.c): lambda(alpha) and m, K(m),
+ * E(m) at the root of alpha = B(m) / ((1 - m) D(m)).  Pure C; the numpy
+ * binding is hertz/_ufuncs.c.
+ */
+#ifndef HERTZ_KERNEL_H
+#define HERTZ_KERNEL_H
+
+#include <stddef.h>
+
+/* Largest n accepted by hertz_ellipse_block. */
+#define HERTZ_BLOCK 64
+
+/* Solve n <= HERTZ_BLOCK contiguous alphas.  m, K, E may be NULL.  Returns -1,
+ * or the index of the first alpha that is not a positive number (the outputs
+ * are then incomplete). */
+ptrdiff_t hertz_ellipse_block(const double *alpha, ptrdiff_t n, int iterations,
+                              double *lam, double *m, double *K, double *E);
+
+/* The same for any n. */
+ptrdiff_t hertz_ellipse_solve(const double *alpha, ptrdiff_t n, int iterations,
+                              double *lam, double *m, double *K, double *E);
+
+/* Fukushima's B(m), D(m) and V(m) = (B - pD)/m for 0 < m < 1, p = 1 - m given
+ * separately so that either can carry full relative precision. */
+void hertz_associate_integrals(ptrdiff_t n, const double *m, const double *p,
+                               double *B, double *D, double *V);
+
+/* Whether the AVX2 start-only path is used; enable = 0 or 1 switches it off
+ * or on (on only where the CPU has AVX2) first, enable < 0 only asks. */
+int hertz_simd(int enable);
+
+#endif

@@ -1,0 +1,689 @@
+/*
+ * hertz._ufuncs -- the numpy binding of the scalar C kernels (_kernel.c: the
+ * ellipse solver; _contact_kernel.c: the contact formulas).
+ *
+ * Every elementwise function is a numpy ufunc with one float64 loop
+ * registered through the ArrayMethod API (numpy >= 2.0), so that a loop can
+ * stop with a ValueError that numpy raises (and dask raises at compute
+ * time), and a promoter that casts any real input (integers, float16/32/64,
+ * long double, Python numbers) to float64 and rejects bool, complex and the
+ * rest with a TypeError.  Broadcasting, out=, and __array_ufunc__ dispatch
+ * come from numpy.  The loops copy strided operands through blocks of
+ * HERTZ_BLOCK elements, the unit the kernels work in.
+ *
+ * The scalar entry points (contact, line_contact) take Python floats and
+ * return tuples: a one-contact call then costs a few hundred ns.
+ */
+#define PY_SSIZE_T_CLEAN
+#include <Python.h>
+
+#define NPY_NO_DEPRECATED_API NPY_2_0_API_VERSION
+#define NPY_TARGET_VERSION NPY_2_0_API_VERSION
+#include <numpy/arrayobject.h>
+#include <numpy/dtype_api.h>
+#include <numpy/ufuncobject.h>
+
+#include "_contact_kernel.h"
+#include "_kernel.h"
+
+#define MAXARGS 32
+
+/* ------------------------------------------------------------------ errors */
+
+static const char *const geometry_names[HERTZ_NGEOMETRY] = {
+    "body1.Rx", "body1.Ry", "body2.Rx", "body2.Ry", "angle", "body1.E", "body1.nu",
+    "body2.E", "body2.nu"};
+static const char *const value_names[] = {"load", "approach", "p0", "load_per_length"};
+static const char *const value_units[] = {"N", "m", "Pa", "N/m"};
+
+/* repr() of a float, as a new C string (PyMem_Free it), or NULL. */
+static char *
+repr(double x)
+{
+    return PyOS_double_to_string(x, 'r', 0, Py_DTSF_ADD_DOT_0, NULL);
+}
+
+static char *
+short_text(double x)
+{
+    return PyOS_double_to_string(x, 'g', 6, 0, NULL);
+}
+
+/* Set the ValueError of error code `code` for one element: `in` holds its
+ * geometry inputs (point-contact numbering), `value` its load, approach or
+ * p0 (`what` indexes value_names), rho_x and rho_y its relative curvatures.
+ * Must hold the GIL. */
+static void
+set_error(int code, const double *in, double value, int what, double rho_x, double rho_y)
+{
+    char *v = NULL, *w = NULL, *x = NULL;
+    if (code >= 1 && code <= HERTZ_NGEOMETRY) {
+        int k = code - 1;
+        const char *name = geometry_names[k];
+        v = repr(in[k]);
+        if (k == HERTZ_ANGLE) {
+            PyErr_Format(PyExc_ValueError, "angle must be a finite angle in rad, got %s", v);
+        }
+        else if (k == HERTZ_E1 || k == HERTZ_E2) {
+            PyErr_Format(PyExc_ValueError,
+                         "%s must be a positive, finite Young's modulus in Pa, got %s", name, v);
+        }
+        else if (k == HERTZ_NU1 || k == HERTZ_NU2) {
+            PyErr_Format(PyExc_ValueError, "%s must be a Poisson's ratio in (-1, 0.5], got %s",
+                         name, v);
+        }
+        else {
+            PyErr_Format(PyExc_ValueError,
+                         "%s must be a nonzero radius in m (positive convex, negative concave, "
+                         "inf flat), got %s", name, v);
+        }
+    }
+    else if (code == HERTZ_BAD_VALUE) {
+        v = repr(value);
+        PyErr_Format(PyExc_ValueError, "%s must be a finite value >= 0 in %s, got %s",
+                     value_names[what], value_units[what], v);
+    }
+    else if (code == HERTZ_LINE) {
+        v = short_text(rho_x);
+        PyErr_Format(PyExc_ValueError,
+                     "the bodies make a line contact (relative curvature %s 1/m across, 0 "
+                     "along the line: parallel cylinders or a cylinder on a plane); use "
+                     "hertz.line_contact(body1, body2, load_per_length)", v);
+    }
+    else if (code == HERTZ_FLAT) {
+        PyErr_SetString(PyExc_ValueError,
+                        "no Hertz point contact: the relative curvature is zero in every "
+                        "direction (plane on plane, or surfaces that fit each other exactly)");
+    }
+    else if (code == HERTZ_CONFORM) {
+        v = short_text(rho_x);
+        w = short_text(rho_y);
+        PyErr_Format(PyExc_ValueError,
+                     "no Hertz point contact: principal relative curvatures %s and %s 1/m "
+                     "must both be positive; a concave surface that conforms more closely "
+                     "than the convex one touches it away from a single point", v, w);
+    }
+    else if (code == HERTZ_LIMIT) {
+        v = short_text(rho_x);
+        w = short_text(rho_y);
+        x = short_text(rho_x / rho_y);
+        PyErr_Format(PyExc_ValueError,
+                     "the bodies are within rounding of a line contact: the principal "
+                     "relative curvatures %s and %s 1/m have a ratio (%s) beyond what a "
+                     "double resolves (1e300); treat it as a line contact "
+                     "(hertz.line_contact)", v, w, x);
+    }
+    else if (code == HERTZ_NOT_LINE) {
+        v = short_text(rho_x);
+        w = short_text(rho_y);
+        PyErr_Format(PyExc_ValueError,
+                     "not a line contact: the principal relative curvatures are %s and %s "
+                     "1/m; a line contact needs one of them 0 and the other positive (use "
+                     "hertz.contact for a point contact)", v, w);
+    }
+    else {
+        PyErr_Format(PyExc_SystemError, "hertz: unknown error code %d", code);
+    }
+    PyMem_Free(v);
+    PyMem_Free(w);
+    PyMem_Free(x);
+}
+
+static void
+set_error_nogil(int code, const double *in, double value, int what, double rho_x,
+                double rho_y)
+{
+    PyGILState_STATE state = PyGILState_Ensure();
+    set_error(code, in, value, what, rho_x, rho_y);
+    PyGILState_Release(state);
+}
+
+/* ------------------------------------------------------ block kernels */
+
+/* A block function computes n <= HERTZ_BLOCK elements from contiguous
+ * inputs into contiguous outputs.  It returns 0, or sets the Python error
+ * (taking the GIL) and returns -1. */
+typedef int (*block_fn)(ptrdiff_t n, const double *const *in, double *const *out, int variant);
+
+static int
+ellipticity_block(ptrdiff_t n, const double *const *in, double *const *out, int iterations)
+{
+    ptrdiff_t bad = hertz_ellipse_solve(in[0], n, iterations, out[0], NULL, NULL, NULL);
+    if (bad >= 0) {
+        PyGILState_STATE state = PyGILState_Ensure();
+        char *v = repr(in[0][bad]);
+        PyErr_Format(PyExc_ValueError,
+                     "alpha must be a positive number (rho_x / rho_y > 0), got %s", v);
+        PyMem_Free(v);
+        PyGILState_Release(state);
+        return -1;
+    }
+    return 0;
+}
+
+static int
+ellipse_block(ptrdiff_t n, const double *const *in, double *const *out, int iterations)
+{
+    ptrdiff_t bad = hertz_ellipse_solve(in[0], n, iterations, out[0], out[1], out[2], out[3]);
+    if (bad >= 0) {
+        PyGILState_STATE state = PyGILState_Ensure();
+        char *v = repr(in[0][bad]);
+        PyErr_Format(PyExc_ValueError,
+                     "alpha must be a positive number (rho_x / rho_y > 0), got %s", v);
+        PyMem_Free(v);
+        PyGILState_Release(state);
+        return -1;
+    }
+    return 0;
+}
+
+static int
+geometry_error(int code, ptrdiff_t bad, const double *const *in, double value, int what,
+               const hertz_geometry *g)
+{
+    double row[HERTZ_NGEOMETRY];
+    for (int k = 0; k < HERTZ_NGEOMETRY; ++k) {
+        row[k] = in[k][bad];
+    }
+    set_error_nogil(code, row, value, what, g->rho_x, g->rho_y);
+    return -1;
+}
+
+/* inputs: 9 geometry + value; outputs: the HERTZ_NOUT fields. */
+static int
+contact_block(ptrdiff_t n, const double *const *in, double *const *out, int mode)
+{
+    hertz_geometry g[HERTZ_BLOCK];
+    ptrdiff_t bad = 0;
+    int code = hertz_geometry_block(n, in, g, &bad);
+    if (code != HERTZ_OK) {
+        return geometry_error(code, bad, in, in[HERTZ_NGEOMETRY][bad], mode, &g[bad]);
+    }
+    for (ptrdiff_t i = 0; i < n; ++i) {
+        double given[6], fields[HERTZ_NOUT];
+        double value = in[HERTZ_NGEOMETRY][i];
+        if (hertz_contact_given(&g[i], mode, value, given) != HERTZ_OK) {
+            return geometry_error(HERTZ_BAD_VALUE, i, in, value, mode, &g[i]);
+        }
+        hertz_contact_fields(&g[i], given, fields);
+        for (int k = 0; k < HERTZ_NOUT; ++k) {
+            out[k][i] = fields[k];
+        }
+    }
+    return 0;
+}
+
+/* The geometry pass of a contact whose loads outnumber its geometries:
+ * inputs: 9 geometry; outputs: lam, alpha, m, K, E, e_star, rho_x, rho_y,
+ * theta, then the coefficients cb, cd, cp, cs as (m, e) pairs. */
+#define GEOMETRY_NOUT 17
+
+static int
+geometry_block(ptrdiff_t n, const double *const *in, double *const *out, int unused)
+{
+    (void)unused;
+    hertz_geometry g[HERTZ_BLOCK];
+    ptrdiff_t bad = 0;
+    int code = hertz_geometry_block(n, in, g, &bad);
+    if (code != HERTZ_OK) {
+        return geometry_error(code, bad, in, 0.0, 0, &g[bad]);
+    }
+    for (ptrdiff_t i = 0; i < n; ++i) {
+        const hertz_geometry *gi = &g[i];
+        double row[GEOMETRY_NOUT] = {
+            gi->lam, gi->alpha, gi->m, gi->K, gi->E, gi->e_star, gi->rho_x, gi->rho_y,
+            gi->theta, gi->cb.m, gi->cb.e, gi->cd.m, gi->cd.e, gi->cp.m, gi->cp.e, gi->cs.m,
+            gi->cs.e};
+        for (int k = 0; k < GEOMETRY_NOUT; ++k) {
+            out[k][i] = row[k];
+        }
+    }
+    return 0;
+}
+
+/* The load pass: inputs lam and the 8 coefficient numbers from
+ * geometry_block, then the value; outputs a, b, load, p0, delta, stiffness. */
+static int
+given_block(ptrdiff_t n, const double *const *in, double *const *out, int mode)
+{
+    for (ptrdiff_t i = 0; i < n; ++i) {
+        hertz_geometry g;
+        g.lam = in[0][i];
+        g.cb.m = in[1][i];
+        g.cb.e = (int)in[2][i];
+        g.cd.m = in[3][i];
+        g.cd.e = (int)in[4][i];
+        g.cp.m = in[5][i];
+        g.cp.e = (int)in[6][i];
+        g.cs.m = in[7][i];
+        g.cs.e = (int)in[8][i];
+        double given[6], value = in[9][i];
+        if (hertz_contact_given(&g, mode, value, given) != HERTZ_OK) {
+            set_error_nogil(HERTZ_BAD_VALUE, NULL, value, mode, 0.0, 0.0);
+            return -1;
+        }
+        for (int k = 0; k < 6; ++k) {
+            out[k][i] = given[k];
+        }
+    }
+    return 0;
+}
+
+/* Error code of each element (0 where it is fine), for locating the first
+ * bad element of an array after a loop has raised. inputs: 9 geometry +
+ * value; output: the code. */
+static int
+contact_status_block(ptrdiff_t n, const double *const *in, double *const *out, int mode)
+{
+    for (ptrdiff_t i = 0; i < n; ++i) {
+        const double *one[HERTZ_NGEOMETRY];
+        for (int k = 0; k < HERTZ_NGEOMETRY; ++k) {
+            one[k] = in[k] + i;
+        }
+        hertz_geometry g;
+        ptrdiff_t bad;
+        double given[6];
+        int code = hertz_geometry_block(1, one, &g, &bad);
+        if (code == HERTZ_OK) {
+            code = hertz_contact_given(&g, mode, in[HERTZ_NGEOMETRY][i], given);
+        }
+        out[0][i] = code;
+    }
+    return 0;
+}
+
+/* inputs: r1x, r1y, r2x, r2y, E1, nu1, E2, nu2, load per length; outputs:
+ * half_width, p0, e_star, rho, load per length. */
+static int
+line_block(ptrdiff_t n, const double *const *in, double *const *out, int status_only)
+{
+    for (ptrdiff_t i = 0; i < n; ++i) {
+        double row[8], res[5], rho_x, rho_y;
+        for (int k = 0; k < 8; ++k) {
+            row[k] = in[k][i];
+        }
+        int code = hertz_line_contact(row, in[8][i], res, &rho_x, &rho_y);
+        if (status_only) {
+            out[0][i] = code;
+            continue;
+        }
+        if (code != HERTZ_OK) {
+            double geo[HERTZ_NGEOMETRY] = {row[0], row[1], row[2], row[3], 0.0,
+                                           row[4], row[5], row[6], row[7]};
+            set_error_nogil(code, geo, in[8][i], 3, rho_x, rho_y);
+            return -1;
+        }
+        for (int k = 0; k < 5; ++k) {
+            out[k][i] = res[k];
+        }
+    }
+    return 0;
+}
+
+/* ------------------------------------------------------ the ufunc loops */
+
+/* Run `fn` over a strided ufunc call in blocks: contiguous operands are used
+ * in place, the others copied through block buffers. */
+static int
+drive(char *const data[], npy_intp const dims[], npy_intp const steps[], int nin, int nout,
+      block_fn fn, int variant)
+{
+    double buf[MAXARGS][HERTZ_BLOCK];
+    const double *in[MAXARGS];
+    double *out[MAXARGS];
+    npy_intp total = dims[0];
+    for (npy_intp start = 0; start < total; start += HERTZ_BLOCK) {
+        ptrdiff_t n = total - start < HERTZ_BLOCK ? (ptrdiff_t)(total - start) : HERTZ_BLOCK;
+        for (int k = 0; k < nin; ++k) {
+            char *p = data[k] + start * steps[k];
+            if (steps[k] == sizeof(double)) {
+                in[k] = (const double *)p;
+            }
+            else {
+                for (ptrdiff_t i = 0; i < n; ++i) {
+                    buf[k][i] = *(const double *)(p + i * steps[k]);
+                }
+                in[k] = buf[k];
+            }
+        }
+        for (int k = 0; k < nout; ++k) {
+            int j = nin + k;
+            out[k] = steps[j] == sizeof(double) ? (double *)(data[j] + start * steps[j])
+                                                : buf[j];
+        }
+        if (fn(n, in, out, variant) < 0) {
+            return -1;
+        }
+        for (int k = 0; k < nout; ++k) {
+            int j = nin + k;
+            if (steps[j] != sizeof(double)) {
+                char *p = data[j] + start * steps[j];
+                for (ptrdiff_t i = 0; i < n; ++i) {
+                    *(double *)(p + i * steps[j]) = buf[j][i];
+                }
+            }
+        }
+    }
+    return 0;
+}
+
+#define LOOP(NAME, NIN, NOUT, FN, VARIANT)                                                 \
+    static int NAME(PyArrayMethod_Context *context, char *const data[],                    \
+                    npy_intp const dims[], npy_intp const steps[], NpyAuxData *aux)        \
+    {                                                                                      \
+        (void)context;                                                                     \
+        (void)aux;                                                                         \
+        return drive(data, dims, steps, NIN, NOUT, FN, VARIANT);                           \
+    }
+
+LOOP(ellipticity0_loop, 1, 1, ellipticity_block, 0)
+LOOP(ellipticity1_loop, 1, 1, ellipticity_block, 1)
+LOOP(ellipticity2_loop, 1, 1, ellipticity_block, 2)
+LOOP(ellipticity3_loop, 1, 1, ellipticity_block, 3)
+LOOP(ellipse0_loop, 1, 4, ellipse_block, 0)
+LOOP(ellipse1_loop, 1, 4, ellipse_block, 1)
+LOOP(contact_load_loop, 10, HERTZ_NOUT, contact_block, HERTZ_GIVEN_LOAD)
+LOOP(contact_approach_loop, 10, HERTZ_NOUT, contact_block, HERTZ_GIVEN_APPROACH)
+LOOP(contact_p0_loop, 10, HERTZ_NOUT, contact_block, HERTZ_GIVEN_P0)
+LOOP(geometry_loop, 9, GEOMETRY_NOUT, geometry_block, 0)
+LOOP(given_load_loop, 10, 6, given_block, HERTZ_GIVEN_LOAD)
+LOOP(given_approach_loop, 10, 6, given_block, HERTZ_GIVEN_APPROACH)
+LOOP(given_p0_loop, 10, 6, given_block, HERTZ_GIVEN_P0)
+LOOP(contact_status_loop, 10, 1, contact_status_block, HERTZ_GIVEN_LOAD)
+LOOP(line_loop, 9, 5, line_block, 0)
+LOOP(line_status_loop, 9, 1, line_block, 1)
+
+/* Any real dtype (and Python int/float) is cast to float64; bool, complex,
+ * strings, datetimes and objects are refused. */
+static int
+real_to_double(PyObject *ufunc, PyArray_DTypeMeta *const op_dtypes[],
+               PyArray_DTypeMeta *const signature[], PyArray_DTypeMeta *new_op_dtypes[])
+{
+    PyUFuncObject *uf = (PyUFuncObject *)ufunc;
+    (void)signature;
+    for (int i = 0; i < uf->nargs; ++i) {
+        PyArray_DTypeMeta *d = op_dtypes[i];
+        if (i < uf->nin && d != NULL) {
+            int type_num = d->singleton ? d->singleton->type_num : -1;
+            int real = d == &PyArray_PyFloatDType || d == &PyArray_PyLongDType
+                       || (type_num >= 0 && type_num != NPY_BOOL
+                           && (PyTypeNum_ISINTEGER(type_num) || PyTypeNum_ISFLOAT(type_num)));
+            if (!real) {
+                PyErr_Format(PyExc_TypeError,
+                             "hertz.%s: argument %d must be real numbers (integer or floating "
+                             "point), got %S", uf->name, i, (PyObject *)d);
+                return -1;
+            }
+        }
+        Py_INCREF(&PyArray_DoubleDType);
+        new_op_dtypes[i] = &PyArray_DoubleDType;
+    }
+    return 0;
+}
+
+static int
+add_ufunc(PyObject *module, const char *name, const char *doc, int nin, int nout,
+          PyArrayMethod_StridedLoop *loop)
+{
+    PyObject *ufunc = PyUFunc_FromFuncAndData(NULL, NULL, NULL, 0, nin, nout, PyUFunc_None,
+                                              name, doc, 0);
+    if (ufunc == NULL) {
+        return -1;
+    }
+    PyArray_DTypeMeta *dtypes[MAXARGS];
+    for (int i = 0; i < nin + nout; ++i) {
+        dtypes[i] = &PyArray_DoubleDType;
+    }
+    PyType_Slot slots[] = {{NPY_METH_strided_loop, (void *)loop}, {0, NULL}};
+    PyArrayMethod_Spec spec = {name, nin, nout, NPY_NO_CASTING,
+                               NPY_METH_NO_FLOATINGPOINT_ERRORS, dtypes, slots};
+    PyObject *any = NULL, *promoter = NULL;
+    int ok = PyUFunc_AddLoopFromSpec(ufunc, &spec) == 0;
+    if (ok) {
+        any = PyTuple_New(nin + nout);
+        ok = any != NULL;
+        for (int i = 0; ok && i < nin + nout; ++i) {
+            PyTuple_SET_ITEM(any, i, Py_NewRef(Py_None));
+        }
+    }
+    if (ok) {
+        promoter = PyCapsule_New((void *)&real_to_double, "numpy._ufunc_promoter", NULL);
+        ok = promoter != NULL && PyUFunc_AddPromoter(ufunc, any, promoter) == 0;
+    }
+    Py_XDECREF(any);
+    Py_XDECREF(promoter);
+    if (ok && PyModule_AddObject(module, name, ufunc) == 0) {
+        return 0;
+    }
+    Py_DECREF(ufunc);
+    return -1;
+}
+
+/* ------------------------------------------------------ scalar entry points */
+
+static PyObject *
+tuple_of(const double *x, int n)
+{
+    PyObject *t = PyTuple_New(n);
+    if (t == NULL) {
+        return NULL;
+    }
+    for (int k = 0; k < n; ++k) {
+        PyObject *f = PyFloat_FromDouble(x[k]);
+        if (f == NULL) {
+            Py_DECREF(t);
+            return NULL;
+        }
+        PyTuple_SET_ITEM(t, k, f);
+    }
+    return t;
+}
+
+static int
+floats(PyObject *const *args, Py_ssize_t nargs, Py_ssize_t want, double *x, const char *fn)
+{
+    if (nargs != want) {
+        PyErr_Format(PyExc_TypeError, "%s takes %zd arguments (%zd given)", fn, want, nargs);
+        return -1;
+    }
+    for (Py_ssize_t k = 0; k < want; ++k) {
+        x[k] = PyFloat_AsDouble(args[k]);
+        if (x[k] == -1.0 && PyErr_Occurred()) {
+            return -1;
+        }
+    }
+    return 0;
+}
+
+PyDoc_STRVAR(contact_scalar_doc,
+"contact(mode, r1x, r1y, r2x, r2y, angle, E1, nu1, E2, nu2, value) -> tuple\n\n"
+"One point contact from Python floats; mode 0, 1, 2: value is the load,\n"
+"approach or p0.  Returns the 15 fields in the order of the contact ufuncs.\n"
+"Private: use hertz.contact.");
+
+static PyObject *
+contact_scalar(PyObject *self, PyObject *const *args, Py_ssize_t nargs)
+{
+    (void)self;
+    double x[11];
+    if (floats(args, nargs, 11, x, "contact") < 0) {
+        return NULL;
+    }
+    int mode = (int)x[0];
+    if (!(mode >= 0 && mode < HERTZ_NMODES && x[0] == mode)) {
+        PyErr_SetString(PyExc_ValueError, "contact: mode must be 0, 1 or 2");
+        return NULL;
+    }
+    const double *geo = x + 1;
+    const double *in[HERTZ_NGEOMETRY];
+    for (int k = 0; k < HERTZ_NGEOMETRY; ++k) {
+        in[k] = geo + k;
+    }
+    hertz_geometry g;
+    ptrdiff_t bad;
+    double given[6], fields[HERTZ_NOUT];
+    int code = hertz_geometry_block(1, in, &g, &bad);
+    if (code == HERTZ_OK) {
+        code = hertz_contact_given(&g, mode, x[10], given);
+    }
+    if (code != HERTZ_OK) {
+        set_error(code, geo, x[10], mode, g.rho_x, g.rho_y);
+        return NULL;
+    }
+    hertz_contact_fields(&g, given, fields);
+    return tuple_of(fields, HERTZ_NOUT);
+}
+
+PyDoc_STRVAR(line_scalar_doc,
+"line_contact(r1x, r1y, r2x, r2y, E1, nu1, E2, nu2, load_per_length) -> tuple\n\n"
+"One line contact from Python floats: (half_width, p0, e_star, rho, load).\n"
+"Private: use hertz.line_contact.");
+
+static PyObject *
+line_scalar(PyObject *self, PyObject *const *args, Py_ssize_t nargs)
+{
+    (void)self;
+    double x[9], res[5], rho_x, rho_y;
+    if (floats(args, nargs, 9, x, "line_contact") < 0) {
+        return NULL;
+    }
+    int code = hertz_line_contact(x, x[8], res, &rho_x, &rho_y);
+    if (code != HERTZ_OK) {
+        double geo[HERTZ_NGEOMETRY] = {x[0], x[1], x[2], x[3], 0.0, x[4], x[5], x[6], x[7]};
+        set_error(code, geo, x[8], 3, rho_x, rho_y);
+        return NULL;
+    }
+    return tuple_of(res, 5);
+}
+
+PyDoc_STRVAR(simd_doc,
+"simd(enable=None) -> bool\n\n"
+"Whether the AVX2 start-only path is used (it gives the same bits as the\n"
+"plain code); with enable, switch it on or off first (on only if the CPU\n"
+"has AVX2).  Private: for tests and benchmarks.");
+
+static PyObject *
+simd(PyObject *self, PyObject *args)
+{
+    (void)self;
+    PyObject *enable = Py_None;
+    if (!PyArg_ParseTuple(args, "|O", &enable)) {
+        return NULL;
+    }
+    int on = -1;
+    if (enable != Py_None) {
+        on = PyObject_IsTrue(enable);
+        if (on < 0) {
+            return NULL;
+        }
+    }
+    return PyBool_FromLong(hertz_simd(on));
+}
+
+PyDoc_STRVAR(assoc_doc,
+"associate_integrals(m, p) -> (B, D, V)\n\n"
+"B(m), D(m) and V(m) = (B - pD)/m for 0 < m < 1 with p = 1 - m given\n"
+"separately (so that either can carry full relative precision); float64\n"
+"arrays of one length.  Private: for the accuracy tests of the kernel.");
+
+static PyObject *
+associate_integrals(PyObject *self, PyObject *args)
+{
+    (void)self;
+    PyObject *mo, *po;
+    if (!PyArg_ParseTuple(args, "OO", &mo, &po)) {
+        return NULL;
+    }
+    PyArrayObject *m = (PyArrayObject *)PyArray_FROMANY(mo, NPY_DOUBLE, 1, 1,
+                                                        NPY_ARRAY_CARRAY_RO);
+    PyArrayObject *p = (PyArrayObject *)PyArray_FROMANY(po, NPY_DOUBLE, 1, 1,
+                                                        NPY_ARRAY_CARRAY_RO);
+    PyObject *result = NULL;
+    if (m && p && PyArray_SIZE(m) != PyArray_SIZE(p)) {
+        PyErr_SetString(PyExc_ValueError, "m and p must have the same length");
+    }
+    else if (m && p) {
+        npy_intp n = PyArray_SIZE(m);
+        PyObject *B = PyArray_SimpleNew(1, &n, NPY_DOUBLE);
+        PyObject *D = PyArray_SimpleNew(1, &n, NPY_DOUBLE);
+        PyObject *V = PyArray_SimpleNew(1, &n, NPY_DOUBLE);
+        if (B && D && V) {
+            hertz_associate_integrals(n, PyArray_DATA(m), PyArray_DATA(p),
+                                      PyArray_DATA((PyArrayObject *)B),
+                                      PyArray_DATA((PyArrayObject *)D),
+                                      PyArray_DATA((PyArrayObject *)V));
+            result = PyTuple_Pack(3, B, D, V);
+        }
+        Py_XDECREF(B);
+        Py_XDECREF(D);
+        Py_XDECREF(V);
+    }
+    Py_XDECREF(m);
+    Py_XDECREF(p);
+    return result;
+}
+
+static PyMethodDef methods[] = {
+    {"contact", (PyCFunction)(void (*)(void))contact_scalar, METH_FASTCALL, contact_scalar_doc},
+    {"line_contact", (PyCFunction)(void (*)(void))line_scalar, METH_FASTCALL, line_scalar_doc},
+    {"simd", simd, METH_VARARGS, simd_doc},
+    {"associate_integrals", associate_integrals, METH_VARARGS, assoc_doc},
+    {NULL, NULL, 0, NULL},
+};
+
+static struct PyModuleDef module_def = {
+    PyModuleDef_HEAD_INIT, "_ufuncs",
+    "Compiled core of hertz: numpy ufuncs over the C kernels (private).", -1, methods,
+};
+
+PyMODINIT_FUNC
+PyInit__ufuncs(void)
+{
+    import_array();
+    import_umath();
+    PyObject *module = PyModule_Create(&module_def);
+    if (module == NULL) {
+        return NULL;
+    }
+    struct {
+        const char *name;
+        int nin, nout;
+        PyArrayMethod_StridedLoop *loop;
+        const char *doc;
+    } table[] = {
+        {"ellipticity0", 1, 1, ellipticity0_loop, "lambda(alpha), the start only (private)"},
+        {"ellipticity1", 1, 1, ellipticity1_loop, "lambda(alpha), one Bailey step (private)"},
+        {"ellipticity2", 1, 1, ellipticity2_loop, "lambda(alpha), two Bailey steps (private)"},
+        {"ellipticity3", 1, 1, ellipticity3_loop, "lambda(alpha), three Bailey steps (private)"},
+        {"ellipse0", 1, 4, ellipse0_loop, "alpha -> lambda, m, K, E; the start (private)"},
+        {"ellipse1", 1, 4, ellipse1_loop, "alpha -> lambda, m, K, E (private)"},
+        {"contact_load", 10, HERTZ_NOUT, contact_load_loop,
+         "geometry, moduli and load -> the contact fields (private)"},
+        {"contact_approach", 10, HERTZ_NOUT, contact_approach_loop,
+         "geometry, moduli and approach -> the contact fields (private)"},
+        {"contact_p0", 10, HERTZ_NOUT, contact_p0_loop,
+         "geometry, moduli and peak pressure -> the contact fields (private)"},
+        {"contact_geometry", 9, GEOMETRY_NOUT, geometry_loop,
+         "geometry and moduli -> the load-independent fields and coefficients (private)"},
+        {"given_load", 10, 6, given_load_loop,
+         "coefficients and load -> a, b, load, p0, delta, stiffness (private)"},
+        {"given_approach", 10, 6, given_approach_loop,
+         "coefficients and approach -> a, b, load, p0, delta, stiffness (private)"},
+        {"given_p0", 10, 6, given_p0_loop,
+         "coefficients and p0 -> a, b, load, p0, delta, stiffness (private)"},
+        {"contact_status", 10, 1, contact_status_loop,
+         "the error code of each contact, 0 if none (private)"},
+        {"line", 9, 5, line_loop,
+         "radii, moduli, load per length -> half_width, p0, e_star, rho, load (private)"},
+        {"line_status", 9, 1, line_status_loop,
+         "the error code of each line contact, 0 if none (private)"},
+    };
+    for (size_t i = 0; i < sizeof table / sizeof table[0]; ++i) {
+        if (add_ufunc(module, table[i].name, table[i].doc, table[i].nin, table[i].nout,
+                      table[i].loop) < 0) {
+            Py_DECREF(module);
+            return NULL;
+        }
+    }
+    return module;
+}
