@@ -25,8 +25,6 @@ from ._validate import (
 
 __all__ = ["Body", "Contact", "LineContact", "contact", "line_contact"]
 
-_CONTACT_FIELDS = ("a", "b", "ellipticity", "alpha", "m", "K", "E", "e_star", "rho_x", "rho_y",
-                   "major_axis_angle", "load", "p0", "delta", "stiffness")
 # given value: (scalar mode, fused ufunc, load pass ufunc)
 _MODES = {"load": (0, _ufuncs.contact_load, _ufuncs.given_load),
           "approach": (1, _ufuncs.contact_approach, _ufuncs.given_approach),
@@ -151,19 +149,57 @@ def _semi_elliptic(p0, r2):
     return float(p) if np.ndim(p) == 0 else p
 
 
-@dataclass(frozen=True, slots=True)
+_GEOMETRY_FIELDS = ("ellipticity", "alpha", "m", "K", "E", "e_star", "rho_x", "rho_y",
+                    "major_axis_angle")
+
+
+class _Deferred:
+    """Inputs from which a batch's geometry fields are computed on first access."""
+
+    __slots__ = ("inputs", "shape")
+
+    def __init__(self, inputs, shape):
+        self.inputs, self.shape = inputs, shape
+
+
+def _geometry_field(k: int, doc: str):
+    def get(self):
+        fields = self._geometry
+        if type(fields) is _Deferred:
+            fields = _solve_geometry(fields.inputs, fields.shape)
+            object.__setattr__(self, "_geometry", fields)
+        return fields[k]
+
+    get.__name__ = _GEOMETRY_FIELDS[k]
+    get.__doc__ = doc
+    return property(get)
+
+
+@dataclass(frozen=True, slots=True, eq=False, repr=False)
 class Contact:
     """Hertz point contact of two bodies; arrays when any input was an array.
 
     The ellipse frame has x along the major axis (semi-axis ``a``) and y
     along the minor axis (semi-axis ``b``).  Array fields are the contact's
-    own arrays (fields that depend on the geometry only may be read-only
-    broadcast views when one geometry carries many loads).
+    own arrays.  The fields that depend on the geometry alone (from
+    ``ellipticity`` to ``major_axis_angle``) are computed by a second
+    compiled pass the first time one of them is read, so that a batch of
+    contacts costs the memory and time of the six load-dependent fields
+    only; when one geometry carries many loads they are read-only broadcast
+    views.
 
     Attributes
     ----------
     a, b : float or ndarray
         Semi-major and semi-minor axes of the contact ellipse [m].
+    load : float or ndarray
+        Normal force P [N].
+    p0 : float or ndarray
+        Peak (central) pressure [Pa].
+    delta : float or ndarray
+        Approach of distant points of the two bodies [m].
+    stiffness : float or ndarray
+        Normal contact stiffness dP/d(delta) = 3 P / (2 delta) [N/m].
     ellipticity : float or ndarray
         a / b >= 1 [-].
     alpha : float or ndarray
@@ -179,37 +215,33 @@ class Contact:
     major_axis_angle : float or ndarray
         Angle from body 1's x axis to the major axis [rad], in (-pi/2, pi/2];
         0 for a circular contact.
-    load : float or ndarray
-        Normal force P [N].
-    p0 : float or ndarray
-        Peak (central) pressure [Pa].
-    delta : float or ndarray
-        Approach of distant points of the two bodies [m].
-    stiffness : float or ndarray
-        Normal contact stiffness dP/d(delta) = 3 P / (2 delta) [N/m].
     rho_sum : float or ndarray
-        rho_x + rho_y [1/m] (computed on access).
+        rho_x + rho_y [1/m].
     p_mean : float or ndarray
-        Mean pressure P / area = 2 p0 / 3 [Pa] (computed on access).
+        Mean pressure P / area = 2 p0 / 3 [Pa].
     area : float or ndarray
-        Contact area pi a b [m**2] (computed on access).
+        Contact area pi a b [m**2].
     """
 
     a: float | np.ndarray
     b: float | np.ndarray
-    ellipticity: float | np.ndarray
-    alpha: float | np.ndarray
-    m: float | np.ndarray
-    K: float | np.ndarray
-    E: float | np.ndarray
-    e_star: float | np.ndarray
-    rho_x: float | np.ndarray
-    rho_y: float | np.ndarray
-    major_axis_angle: float | np.ndarray
     load: float | np.ndarray
     p0: float | np.ndarray
     delta: float | np.ndarray
     stiffness: float | np.ndarray
+    #: the nine geometry fields, or the _Deferred inputs to compute them from
+    _geometry: tuple | _Deferred = field(repr=False)
+
+    ellipticity = _geometry_field(0, "a / b >= 1 [-].")
+    alpha = _geometry_field(1, "Curvature ratio rho_x / rho_y >= 1 [-].")
+    m = _geometry_field(2, "Elliptic parameter 1 - (b/a)**2 [-].")
+    K = _geometry_field(3, "Complete elliptic integral of the first kind K(m) [-].")
+    E = _geometry_field(4, "Complete elliptic integral of the second kind E(m) [-].")
+    e_star = _geometry_field(5, "E* [Pa], 1/E* = (1 - nu1**2)/E1 + (1 - nu2**2)/E2.")
+    rho_x = _geometry_field(6, "Larger principal relative curvature [1/m].")
+    rho_y = _geometry_field(7, "Smaller principal relative curvature [1/m].")
+    major_axis_angle = _geometry_field(
+        8, "Angle from body 1's x axis to the major axis [rad], in (-pi/2, pi/2].")
 
     @property
     def rho_sum(self):
@@ -225,6 +257,10 @@ class Contact:
     def area(self):
         """Contact area pi a b [m**2]."""
         return math.pi * self.a * self.b
+
+    def __repr__(self):
+        names = ("a", "b", "load", "p0", "delta", "stiffness") + _GEOMETRY_FIELDS
+        return "Contact(" + ", ".join(f"{k}={getattr(self, k)!r}" for k in names) + ")"
 
     def pressure(self, x, y):
         """Contact pressure at (x, y) in the ellipse frame [Pa].
@@ -244,6 +280,15 @@ class Contact:
         y = as_float_array(y, "y")
         with np.errstate(divide="ignore", invalid="ignore"):
             return _semi_elliptic(self.p0, np.square(x / self.a) + np.square(y / self.b))
+
+
+def _solve_geometry(inputs, shape):
+    """The nine geometry fields of a batch, broadcast to its shape."""
+    if any(is_duck_array(x) for x in inputs):
+        return tuple(_dask_apply(_ufuncs.contact_geometry, inputs, len(_GEOMETRY_FIELDS),
+                                 shape))
+    fields = _ufuncs.contact_geometry(*inputs)
+    return tuple(x if x.shape == shape else np.broadcast_to(x, shape) for x in fields)
 
 
 @dataclass(frozen=True, slots=True)
@@ -314,12 +359,19 @@ def _first_error(status_ufunc, scalar, args, shape, extra=()):
     return None  # pragma: no cover - the status pass and the loop agree
 
 
-def _dask_apply(ufunc, args, nout):
+def _dask_shape(args):
+    return np.broadcast_shapes(*(np.shape(a) for a in args))
+
+
+def _dask_apply(ufunc, args, nout, shape):
+    """The ufunc over dask (duck) arrays, lazily: a tuple of nout dask arrays of ``shape``."""
     import dask.array as da
 
     signature = ",".join(["()"] * len(args)) + "->" + ",".join(["()"] * nout)
-    return da.apply_gufunc(ufunc, signature, *args, output_dtypes=(np.float64,) * nout,
-                           vectorize=False)
+    out = da.apply_gufunc(ufunc, signature, *args, output_dtypes=(np.float64,) * nout,
+                          vectorize=False)
+    out = out if isinstance(out, tuple) else (out,)
+    return tuple(x if x.shape == shape else da.broadcast_to(x, shape) for x in out)
 
 
 def contact(body1: Body, body2: Body, load=None, angle=0.0, *, approach=None,
@@ -398,23 +450,30 @@ def contact(body1: Body, body2: Body, load=None, angle=0.0, *, approach=None,
     kind_v, kind_a = type(value), type(angle)
     if (body1._scalar and body2._scalar and (kind_v is float or kind_v is int)
             and (kind_a is float or kind_a is int)):
-        return Contact(*_ufuncs.contact(mode, body1.Rx, body1.Ry, body2.Rx, body2.Ry, angle,
-                                        body1.E, body1.nu, body2.E, body2.nu, value))
+        t = _ufuncs.contact(mode, body1.Rx, body1.Ry, body2.Rx, body2.Ry, angle, body1.E,
+                            body1.nu, body2.E, body2.nu, value)
+        return Contact(t[0], t[1], t[2], t[3], t[4], t[5], t[6:])
     args = [body1.Rx, body1.Ry, body2.Rx, body2.Ry, _real_arg(angle, "angle"), body1.E,
             body1.nu, body2.E, body2.nu, _real_arg(value, name)]
+    geometry = args[:9]
     if any(is_duck_array(a) for a in args):
-        return Contact(*_dask_apply(fused, args, len(_CONTACT_FIELDS)))
-    geometry_shape = broadcast_shape(**dict(zip(_GEOMETRY_NAMES, args, strict=False)))
-    shape = broadcast_shape(**dict(zip(_GEOMETRY_NAMES, args, strict=False)), **{name: args[9]})
+        shape = _dask_shape(args)
+        return Contact(*_dask_apply(fused, args, 6, shape), _Deferred(geometry, shape))
+    geometry_shape = broadcast_shape(**dict(zip(_GEOMETRY_NAMES, geometry, strict=True)))
+    shape = broadcast_shape(**dict(zip(_GEOMETRY_NAMES, geometry, strict=True)),
+                            **{name: args[9]})
     try:
         if math.prod(geometry_shape) == math.prod(shape):
-            return _finish(fused(*args), Contact)
+            if not shape:  # numpy scalars or 0-d arrays: the scalar path
+                t = _ufuncs.contact(mode, *(float(x) for x in args))
+                return Contact(t[0], t[1], t[2], t[3], t[4], t[5], t[6:])
+            return Contact(*fused(*args), _Deferred(geometry, shape))
         # One geometry carries many loads: solve each geometry once and
         # broadcast its fields (read-only views) over the loads.
-        geo = _ufuncs.contact_geometry(*args[:9])
-        a, b, P, p_peak, delta, stiffness = given(geo[0], *geo[9:], args[9])
-        view = [np.broadcast_to(x, shape) for x in geo[:9]]
-        return Contact(a, b, *view[:3], *view[3:9], P, p_peak, delta, stiffness)
+        coefficients = _ufuncs.contact_coefficients(*geometry)
+        fields = coefficients[:9]
+        given_values = given(fields[0], *coefficients[9:], args[9])
+        return Contact(*given_values, tuple(np.broadcast_to(x, shape) for x in fields))
     except ValueError as exc:
         err = _first_error(_ufuncs.contact_status, _ufuncs.contact, args, shape, (mode,))
         raise (err or exc) from None
@@ -469,7 +528,7 @@ def line_contact(body1: Body, body2: Body, load_per_length) -> LineContact:
     args = [body1.Rx, body1.Ry, body2.Rx, body2.Ry, body1.E, body1.nu, body2.E, body2.nu,
             _real_arg(load_per_length, "load_per_length")]
     if any(is_duck_array(a) for a in args):
-        return LineContact(*_dask_apply(_ufuncs.line, args, 5))
+        return LineContact(*_dask_apply(_ufuncs.line, args, 5, _dask_shape(args)))
     names = [n for n in _GEOMETRY_NAMES if n != "angle"] + ["load_per_length"]
     shape = broadcast_shape(**dict(zip(names, args, strict=True)))
     try:

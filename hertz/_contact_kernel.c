@@ -81,15 +81,6 @@ split(double x)
     return s;
 }
 
-/* b = x^(1/3) for x = m 2^e > 0, as a scaled value. */
-static inline hertz_scaled
-cbrt_scaled(double m, int e)
-{
-    int q = e >= 0 ? e / 3 : -((2 - e) / 3); /* floor(e / 3) */
-    hertz_scaled s = {cbrt(m * (double)(1 << (e - 3 * q))), q};
-    return s;
-}
-
 /* 1/ra + 1/rb, a concave-convex pair without cancellation. */
 static inline double
 pair_sum(double ra, double rb)
@@ -150,7 +141,7 @@ reduced_modulus(double e1, double nu1, double e2, double nu2, hertz_scaled *e_st
  * error code; rx, ry are set for the contact errors. */
 static int
 curvatures(const double r[4], double angle, double *rx, double *ry, double *rs,
-           int *e, double *theta)
+           int *e, double *theta, int with_theta)
 {
     static const int names[4] = {HERTZ_R1X, HERTZ_R1Y, HERTZ_R2X, HERTZ_R2Y};
     double radius[4];
@@ -212,9 +203,11 @@ curvatures(const double r[4], double angle, double *rx, double *ry, double *rs,
         }
         /* rho_x lies along atan2(g2 sin 2psi, g1 + g2 cos 2psi)/2; the major
          * axis (along rho_y) is normal to it. */
-        th = 0.5 * atan2(2.0 * g2 * s * c, g1 + g2 * (c - s) * (c + s)) + 0.5 * PI;
-        th = th > 0.5 * PI ? th - PI : th;
-        th = d == 0.0 ? 0.0 : th;
+        th = 0.0;
+        if (with_theta && d != 0.0) {
+            th = 0.5 * atan2(2.0 * g2 * s * c, g1 + g2 * (c - s) * (c + s)) + 0.5 * PI;
+            th = th > 0.5 * PI ? th - PI : th;
+        }
     }
     *rx = rho_x;
     *ry = rho_y;
@@ -234,7 +227,7 @@ curvatures(const double r[4], double angle, double *rx, double *ry, double *rs,
 
 int
 hertz_geometry_block(ptrdiff_t n, const double *const in[HERTZ_NGEOMETRY],
-                     hertz_geometry *g, ptrdiff_t *bad)
+                     hertz_geometry *g, ptrdiff_t *bad, int with_theta)
 {
     double alpha[HERTZ_BLOCK] = {0.0}, lam[HERTZ_BLOCK], m[HERTZ_BLOCK], K[HERTZ_BLOCK],
         E[HERTZ_BLOCK], rs[HERTZ_BLOCK];
@@ -243,7 +236,8 @@ hertz_geometry_block(ptrdiff_t n, const double *const in[HERTZ_NGEOMETRY],
     for (ptrdiff_t i = 0; i < n; ++i) {
         double r[4] = {in[HERTZ_R1X][i], in[HERTZ_R1Y][i], in[HERTZ_R2X][i], in[HERTZ_R2Y][i]};
         double rx = 0.0, ry = 0.0;
-        int code = curvatures(r, in[HERTZ_ANGLE][i], &rx, &ry, &rs[i], &ce[i], &g[i].theta);
+        int code = curvatures(r, in[HERTZ_ANGLE][i], &rx, &ry, &rs[i], &ce[i], &g[i].theta,
+                              with_theta);
         if (code == HERTZ_OK) {
             code = reduced_modulus(in[HERTZ_E1][i], in[HERTZ_NU1][i], in[HERTZ_E2][i],
                                    in[HERTZ_NU2][i], &es[i]);
@@ -281,8 +275,66 @@ hertz_geometry_block(ptrdiff_t n, const double *const in[HERTZ_NGEOMETRY],
     return HERTZ_OK;
 }
 
+/* Double-double helpers (Dekker 1971, no fused multiply-add needed): the
+ * load-dependent outputs are c b^k rounded once, with b carried as hi + lo,
+ * so that scaling the load, or going from load to approach or p0 and back,
+ * moves them by a unit in the last place or two, not by the sum of the
+ * roundings of every step. */
+static inline void
+veltkamp(double a, double *hi, double *lo)
+{
+    double t = 134217729.0 * a; /* 2^27 + 1 */
+    *hi = t - (t - a);
+    *lo = a - *hi;
+}
+
+/* a b = p + *err exactly. */
+static inline double
+two_prod(double a, double b, double *err)
+{
+    double p = a * b, ah, al, bh, bl;
+    veltkamp(a, &ah, &al);
+    veltkamp(b, &bh, &bl);
+    *err = ((ah * bh - p) + ah * bl + al * bh) + al * bl;
+    return p;
+}
+
+/* (h + l) (x + y) as a double-double. */
+static inline double
+dd_mul(double h, double l, double x, double y, double *lo)
+{
+    double e, p = two_prod(h, x, &e);
+    e += h * y + l * x;
+    double s = p + e;
+    *lo = e - (s - p);
+    return s;
+}
+
+/* (h + l) / c, rounded once. */
+static inline double
+dd_div(double h, double l, double c)
+{
+    double q = h / c, e, p = two_prod(q, c, &e);
+    return q + (((h - p) - e) + l) / c;
+}
+
+/* c (h + l), rounded once. */
+static inline double
+dd_scale(double c, double h, double l)
+{
+    double e, p = two_prod(c, h, &e);
+    return p + (e + c * l);
+}
+
+static inline int
+floor_div(int e, int k)
+{
+    return e >= 0 ? e / k : -((k - 1 - e) / k);
+}
+
 int
-hertz_contact_given(const hertz_geometry *g, int mode, double value, double out[6])
+hertz_contact_given(const hertz_geometry *g, int mode, double value,
+                    double out[HERTZ_NGIVEN])
 {
     if (!(value >= 0.0 && value <= DBL_MAX)) {
         return HERTZ_BAD_VALUE;
@@ -293,56 +345,72 @@ hertz_contact_given(const hertz_geometry *g, int mode, double value, double out[
         }
         return HERTZ_OK;
     }
-    hertz_scaled v = split(value), b, load;
+    hertz_scaled v = split(value);
+    double bh, bl, b2h, b2l, load;
+    int e, q;
     if (mode == HERTZ_GIVEN_LOAD) {
-        b = cbrt_scaled(g->cb.m * v.m, g->cb.e + v.e);
-        load.m = value;
-        load.e = 0;
+        /* b^3 = cb P = (xh + xl) 2^(3q): cube root, one Newton step in double-double */
+        double xl, xh = two_prod(g->cb.m, v.m, &xl);
+        e = g->cb.e + v.e;
+        q = floor_div(e, 3);
+        double f = (double)(1 << (e - 3 * q));
+        xh *= f;
+        xl *= f;
+        bh = cbrt(xh);
+        double sl, sh = two_prod(bh, bh, &sl), cl, ch = dd_mul(sh, sl, bh, 0.0, &cl);
+        bl = ((xh - ch) - cl + xl) / (3.0 * sh);
+        load = value;
     }
     else if (mode == HERTZ_GIVEN_APPROACH) {
-        /* t = b^2 = delta / cd; P = t sqrt(t) / cb */
-        int e = v.e - g->cd.e;
-        int q = e >= 0 ? e / 2 : -((1 - e) / 2);
-        double t = v.m / g->cd.m * (double)(1 << (e - 2 * q));
-        b.m = sqrt(t);
-        b.e = q;
-        load.m = t * b.m / g->cb.m;
-        load.e = 3 * q - g->cb.e;
+        /* b^2 = t = delta / cd = (th + tl) 2^(2q); P = t b / cb */
+        double th = v.m / g->cd.m, pe, pp = two_prod(th, g->cd.m, &pe);
+        double tl = ((v.m - pp) - pe) / g->cd.m;
+        e = v.e - g->cd.e;
+        q = floor_div(e, 2);
+        double f = (double)(1 << (e - 2 * q));
+        th *= f;
+        tl *= f;
+        bh = sqrt(th);
+        double sl, sh = two_prod(bh, bh, &sl);
+        bl = ((th - sh) - sl + tl) / (2.0 * bh);
+        double ll, lh = dd_mul(th, tl, bh, bl, &ll);
+        load = scale2(dd_div(lh, ll, g->cb.m), 3 * q - g->cb.e);
     }
     else {
-        b.m = v.m / g->cp.m;
-        b.e = v.e - g->cp.e;
-        load.m = b.m * b.m * b.m / g->cb.m;
-        load.e = 3 * b.e - g->cb.e;
+        /* b = p0 / cp; P = b^3 / cb */
+        bh = v.m / g->cp.m;
+        double pe, pp = two_prod(bh, g->cp.m, &pe);
+        bl = ((v.m - pp) - pe) / g->cp.m;
+        q = v.e - g->cp.e;
+        load = 0.0; /* below */
     }
-    out[0] = scale2(g->lam * b.m, b.e);
-    out[1] = scale2(b.m, b.e);
-    out[2] = scale2(load.m, load.e);
-    out[3] = mode == HERTZ_GIVEN_P0 ? value : scale2(g->cp.m * b.m, g->cp.e + b.e);
+    b2h = dd_mul(bh, bl, bh, bl, &b2l);
+    if (mode == HERTZ_GIVEN_P0) {
+        double ll, lh = dd_mul(b2h, b2l, bh, bl, &ll);
+        load = scale2(dd_div(lh, ll, g->cb.m), 3 * q - g->cb.e);
+    }
+    out[0] = scale2(dd_scale(g->lam, bh, bl), q);
+    out[1] = scale2(bh + bl, q);
+    out[2] = load;
+    out[3] = mode == HERTZ_GIVEN_P0 ? value : scale2(dd_scale(g->cp.m, bh, bl), g->cp.e + q);
     out[4] = mode == HERTZ_GIVEN_APPROACH ? value
-                                          : scale2(g->cd.m * b.m * b.m, g->cd.e + 2 * b.e);
-    out[5] = scale2(g->cs.m * b.m, g->cs.e + b.e);
+                                          : scale2(dd_scale(g->cd.m, b2h, b2l), g->cd.e + 2 * q);
+    out[5] = scale2(dd_scale(g->cs.m, bh, bl), g->cs.e + q);
     return HERTZ_OK;
 }
 
 void
-hertz_contact_fields(const hertz_geometry *g, const double given[6], double out[HERTZ_NOUT])
+hertz_geometry_fields(const hertz_geometry *g, double out[HERTZ_NOUT - HERTZ_NGIVEN])
 {
-    out[HERTZ_OUT_A] = given[0];
-    out[HERTZ_OUT_B] = given[1];
-    out[HERTZ_OUT_LAMBDA] = g->lam;
-    out[HERTZ_OUT_ALPHA] = g->alpha;
-    out[HERTZ_OUT_M] = g->m;
-    out[HERTZ_OUT_K] = g->K;
-    out[HERTZ_OUT_E] = g->E;
-    out[HERTZ_OUT_ESTAR] = g->e_star;
-    out[HERTZ_OUT_RHOX] = g->rho_x;
-    out[HERTZ_OUT_RHOY] = g->rho_y;
-    out[HERTZ_OUT_THETA] = g->theta;
-    out[HERTZ_OUT_LOAD] = given[2];
-    out[HERTZ_OUT_P0] = given[3];
-    out[HERTZ_OUT_DELTA] = given[4];
-    out[HERTZ_OUT_STIFFNESS] = given[5];
+    out[0] = g->lam;
+    out[1] = g->alpha;
+    out[2] = g->m;
+    out[3] = g->K;
+    out[4] = g->E;
+    out[5] = g->e_star;
+    out[6] = g->rho_x;
+    out[7] = g->rho_y;
+    out[8] = g->theta;
 }
 
 /* Line contact (Johnson sec. 4.3): half_width^2 = 4 P' / (pi E* rho),
@@ -353,7 +421,7 @@ hertz_line_contact(const double in[8], double load, double out[5], double *rho_x
 {
     double rx = 0.0, ry = 0.0, rs, theta;
     int e;
-    int code = curvatures(in, 0.0, &rx, &ry, &rs, &e, &theta);
+    int code = curvatures(in, 0.0, &rx, &ry, &rs, &e, &theta, 0);
     *rho_x = scale2(rx, e);
     *rho_y = scale2(ry, e);
     if (code == HERTZ_LINE) {

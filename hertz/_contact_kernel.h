@@ -44,27 +44,31 @@ typedef struct {
     hertz_scaled cb, cd, cp, cs;
 } hertz_geometry;
 
-/* Point-contact outputs, in this order. */
+/* Point-contact outputs, in this order: the load-dependent ones
+ * (HERTZ_NGIVEN of them), then those of the geometry alone. */
 enum {
-    HERTZ_OUT_A, HERTZ_OUT_B, HERTZ_OUT_LAMBDA, HERTZ_OUT_ALPHA, HERTZ_OUT_M, HERTZ_OUT_K,
-    HERTZ_OUT_E, HERTZ_OUT_ESTAR, HERTZ_OUT_RHOX, HERTZ_OUT_RHOY, HERTZ_OUT_THETA,
-    HERTZ_OUT_LOAD, HERTZ_OUT_P0, HERTZ_OUT_DELTA, HERTZ_OUT_STIFFNESS, HERTZ_NOUT
+    HERTZ_OUT_A, HERTZ_OUT_B, HERTZ_OUT_LOAD, HERTZ_OUT_P0, HERTZ_OUT_DELTA,
+    HERTZ_OUT_STIFFNESS, HERTZ_NGIVEN,
+    HERTZ_OUT_LAMBDA = HERTZ_NGIVEN, HERTZ_OUT_ALPHA, HERTZ_OUT_M, HERTZ_OUT_K, HERTZ_OUT_E,
+    HERTZ_OUT_ESTAR, HERTZ_OUT_RHOX, HERTZ_OUT_RHOY, HERTZ_OUT_THETA, HERTZ_NOUT
 };
 
 /* n <= HERTZ_BLOCK elements, in[k][i] geometry input k of element i.  Returns
  * HERTZ_OK, or an error code with *bad the first bad element (whose rho_x and
- * rho_y are then set where the error concerns them). */
+ * rho_y are then set where the error concerns them).  With with_theta = 0
+ * the major-axis angle is not computed (left 0). */
 int hertz_geometry_block(ptrdiff_t n, const double *const in[HERTZ_NGEOMETRY],
-                         hertz_geometry *g, ptrdiff_t *bad);
+                         hertz_geometry *g, ptrdiff_t *bad, int with_theta);
 
 /* The load-dependent outputs for a given load, approach or peak pressure
  * (mode): out = {a, b, load, p0, delta, stiffness}.  HERTZ_OK or
  * HERTZ_BAD_VALUE. */
-int hertz_contact_given(const hertz_geometry *g, int mode, double value, double out[6]);
+int hertz_contact_given(const hertz_geometry *g, int mode, double value,
+                        double out[HERTZ_NGIVEN]);
 
-/* All HERTZ_NOUT outputs of one geometry and given value. */
-void hertz_contact_fields(const hertz_geometry *g, const double given[6],
-                          double out[HERTZ_NOUT]);
+/* The geometry's own outputs: lambda, alpha, m, K, E, e_star, rho_x, rho_y,
+ * theta. */
+void hertz_geometry_fields(const hertz_geometry *g, double out[HERTZ_NOUT - HERTZ_NGIVEN]);
 
 /* Line contact (2-D, plane strain): in = {r1x, r1y, r2x, r2y, E1, nu1, E2,
  * nu2}, the line along y.  out = {half_width, p0, e_star, rho, load}.

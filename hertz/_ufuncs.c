@@ -56,7 +56,7 @@ short_text(double x)
 static void
 set_error(int code, const double *in, double value, int what, double rho_x, double rho_y)
 {
-    char *v = NULL, *w = NULL, *x = NULL;
+    char *v = NULL, *w = NULL;
     if (code >= 1 && code <= HERTZ_NGEOMETRY) {
         int k = code - 1;
         const char *name = geometry_names[k];
@@ -106,12 +106,11 @@ set_error(int code, const double *in, double value, int what, double rho_x, doub
     else if (code == HERTZ_LIMIT) {
         v = short_text(rho_x);
         w = short_text(rho_y);
-        x = short_text(rho_x / rho_y);
         PyErr_Format(PyExc_ValueError,
                      "the bodies are within rounding of a line contact: the principal "
-                     "relative curvatures %s and %s 1/m have a ratio (%s) beyond what a "
-                     "double resolves (1e300); treat it as a line contact "
-                     "(hertz.line_contact)", v, w, x);
+                     "relative curvatures %s and %s 1/m have a ratio rho_x / rho_y beyond "
+                     "what a double resolves (about 1e307); treat it as a line contact "
+                     "(hertz.line_contact)", v, w);
     }
     else if (code == HERTZ_NOT_LINE) {
         v = short_text(rho_x);
@@ -126,7 +125,6 @@ set_error(int code, const double *in, double value, int what, double rho_x, doub
     }
     PyMem_Free(v);
     PyMem_Free(w);
-    PyMem_Free(x);
 }
 
 static void
@@ -189,52 +187,55 @@ geometry_error(int code, ptrdiff_t bad, const double *const *in, double value, i
     return -1;
 }
 
-/* inputs: 9 geometry + value; outputs: the HERTZ_NOUT fields. */
+/* inputs: 9 geometry + value; outputs: a, b, load, p0, delta, stiffness. */
 static int
 contact_block(ptrdiff_t n, const double *const *in, double *const *out, int mode)
 {
     hertz_geometry g[HERTZ_BLOCK];
     ptrdiff_t bad = 0;
-    int code = hertz_geometry_block(n, in, g, &bad);
+    int code = hertz_geometry_block(n, in, g, &bad, 0);
     if (code != HERTZ_OK) {
         return geometry_error(code, bad, in, in[HERTZ_NGEOMETRY][bad], mode, &g[bad]);
     }
     for (ptrdiff_t i = 0; i < n; ++i) {
-        double given[6], fields[HERTZ_NOUT];
+        double given[HERTZ_NGIVEN];
         double value = in[HERTZ_NGEOMETRY][i];
         if (hertz_contact_given(&g[i], mode, value, given) != HERTZ_OK) {
             return geometry_error(HERTZ_BAD_VALUE, i, in, value, mode, &g[i]);
         }
-        hertz_contact_fields(&g[i], given, fields);
-        for (int k = 0; k < HERTZ_NOUT; ++k) {
-            out[k][i] = fields[k];
+        for (int k = 0; k < HERTZ_NGIVEN; ++k) {
+            out[k][i] = given[k];
         }
     }
     return 0;
 }
 
-/* The geometry pass of a contact whose loads outnumber its geometries:
- * inputs: 9 geometry; outputs: lam, alpha, m, K, E, e_star, rho_x, rho_y,
- * theta, then the coefficients cb, cd, cp, cs as (m, e) pairs. */
-#define GEOMETRY_NOUT 17
+/* The fields of the geometry alone: inputs 9 geometry; outputs lambda,
+ * alpha, m, K, E, e_star, rho_x, rho_y, theta, and with `coefficients` the
+ * coefficients cb, cd, cp, cs as (m, e) pairs for the load pass. */
+#define NFIELDS (HERTZ_NOUT - HERTZ_NGIVEN)
+#define GEOMETRY_NOUT (NFIELDS + 8)
 
 static int
-geometry_block(ptrdiff_t n, const double *const *in, double *const *out, int unused)
+geometry_block(ptrdiff_t n, const double *const *in, double *const *out, int coefficients)
 {
-    (void)unused;
     hertz_geometry g[HERTZ_BLOCK];
     ptrdiff_t bad = 0;
-    int code = hertz_geometry_block(n, in, g, &bad);
+    int code = hertz_geometry_block(n, in, g, &bad, 1);
     if (code != HERTZ_OK) {
         return geometry_error(code, bad, in, 0.0, 0, &g[bad]);
     }
     for (ptrdiff_t i = 0; i < n; ++i) {
         const hertz_geometry *gi = &g[i];
-        double row[GEOMETRY_NOUT] = {
-            gi->lam, gi->alpha, gi->m, gi->K, gi->E, gi->e_star, gi->rho_x, gi->rho_y,
-            gi->theta, gi->cb.m, gi->cb.e, gi->cd.m, gi->cd.e, gi->cp.m, gi->cp.e, gi->cs.m,
-            gi->cs.e};
-        for (int k = 0; k < GEOMETRY_NOUT; ++k) {
+        double row[GEOMETRY_NOUT];
+        hertz_geometry_fields(gi, row);
+        double extra[8] = {gi->cb.m, gi->cb.e, gi->cd.m, gi->cd.e,
+                           gi->cp.m, gi->cp.e, gi->cs.m, gi->cs.e};
+        for (int k = 0; k < 8; ++k) {
+            row[NFIELDS + k] = extra[k];
+        }
+        int count = coefficients ? GEOMETRY_NOUT : NFIELDS;
+        for (int k = 0; k < count; ++k) {
             out[k][i] = row[k];
         }
     }
@@ -257,12 +258,12 @@ given_block(ptrdiff_t n, const double *const *in, double *const *out, int mode)
         g.cp.e = (int)in[6][i];
         g.cs.m = in[7][i];
         g.cs.e = (int)in[8][i];
-        double given[6], value = in[9][i];
+        double given[HERTZ_NGIVEN], value = in[9][i];
         if (hertz_contact_given(&g, mode, value, given) != HERTZ_OK) {
             set_error_nogil(HERTZ_BAD_VALUE, NULL, value, mode, 0.0, 0.0);
             return -1;
         }
-        for (int k = 0; k < 6; ++k) {
+        for (int k = 0; k < HERTZ_NGIVEN; ++k) {
             out[k][i] = given[k];
         }
     }
@@ -282,8 +283,8 @@ contact_status_block(ptrdiff_t n, const double *const *in, double *const *out, i
         }
         hertz_geometry g;
         ptrdiff_t bad;
-        double given[6];
-        int code = hertz_geometry_block(1, one, &g, &bad);
+        double given[HERTZ_NGIVEN];
+        int code = hertz_geometry_block(1, one, &g, &bad, 0);
         if (code == HERTZ_OK) {
             code = hertz_contact_given(&g, mode, in[HERTZ_NGEOMETRY][i], given);
         }
@@ -382,10 +383,11 @@ LOOP(ellipticity2_loop, 1, 1, ellipticity_block, 2)
 LOOP(ellipticity3_loop, 1, 1, ellipticity_block, 3)
 LOOP(ellipse0_loop, 1, 4, ellipse_block, 0)
 LOOP(ellipse1_loop, 1, 4, ellipse_block, 1)
-LOOP(contact_load_loop, 10, HERTZ_NOUT, contact_block, HERTZ_GIVEN_LOAD)
-LOOP(contact_approach_loop, 10, HERTZ_NOUT, contact_block, HERTZ_GIVEN_APPROACH)
-LOOP(contact_p0_loop, 10, HERTZ_NOUT, contact_block, HERTZ_GIVEN_P0)
-LOOP(geometry_loop, 9, GEOMETRY_NOUT, geometry_block, 0)
+LOOP(contact_load_loop, 10, HERTZ_NGIVEN, contact_block, HERTZ_GIVEN_LOAD)
+LOOP(contact_approach_loop, 10, HERTZ_NGIVEN, contact_block, HERTZ_GIVEN_APPROACH)
+LOOP(contact_p0_loop, 10, HERTZ_NGIVEN, contact_block, HERTZ_GIVEN_P0)
+LOOP(geometry_loop, 9, NFIELDS, geometry_block, 0)
+LOOP(coefficients_loop, 9, GEOMETRY_NOUT, geometry_block, 1)
 LOOP(given_load_loop, 10, 6, given_block, HERTZ_GIVEN_LOAD)
 LOOP(given_approach_loop, 10, 6, given_block, HERTZ_GIVEN_APPROACH)
 LOOP(given_p0_loop, 10, 6, given_block, HERTZ_GIVEN_P0)
@@ -498,7 +500,8 @@ floats(PyObject *const *args, Py_ssize_t nargs, Py_ssize_t want, double *x, cons
 PyDoc_STRVAR(contact_scalar_doc,
 "contact(mode, r1x, r1y, r2x, r2y, angle, E1, nu1, E2, nu2, value) -> tuple\n\n"
 "One point contact from Python floats; mode 0, 1, 2: value is the load,\n"
-"approach or p0.  Returns the 15 fields in the order of the contact ufuncs.\n"
+"approach or p0.  Returns (a, b, load, p0, delta, stiffness, lambda, alpha,\n"
+"m, K, E, e_star, rho_x, rho_y, theta).\n"
 "Private: use hertz.contact.");
 
 static PyObject *
@@ -521,16 +524,16 @@ contact_scalar(PyObject *self, PyObject *const *args, Py_ssize_t nargs)
     }
     hertz_geometry g;
     ptrdiff_t bad;
-    double given[6], fields[HERTZ_NOUT];
-    int code = hertz_geometry_block(1, in, &g, &bad);
+    double fields[HERTZ_NOUT];
+    int code = hertz_geometry_block(1, in, &g, &bad, 1);
     if (code == HERTZ_OK) {
-        code = hertz_contact_given(&g, mode, x[10], given);
+        code = hertz_contact_given(&g, mode, x[10], fields);
     }
     if (code != HERTZ_OK) {
         set_error(code, geo, x[10], mode, g.rho_x, g.rho_y);
         return NULL;
     }
-    hertz_contact_fields(&g, given, fields);
+    hertz_geometry_fields(&g, fields + HERTZ_NGIVEN);
     return tuple_of(fields, HERTZ_NOUT);
 }
 
@@ -657,14 +660,18 @@ PyInit__ufuncs(void)
         {"ellipticity3", 1, 1, ellipticity3_loop, "lambda(alpha), three Bailey steps (private)"},
         {"ellipse0", 1, 4, ellipse0_loop, "alpha -> lambda, m, K, E; the start (private)"},
         {"ellipse1", 1, 4, ellipse1_loop, "alpha -> lambda, m, K, E (private)"},
-        {"contact_load", 10, HERTZ_NOUT, contact_load_loop,
-         "geometry, moduli and load -> the contact fields (private)"},
-        {"contact_approach", 10, HERTZ_NOUT, contact_approach_loop,
-         "geometry, moduli and approach -> the contact fields (private)"},
-        {"contact_p0", 10, HERTZ_NOUT, contact_p0_loop,
-         "geometry, moduli and peak pressure -> the contact fields (private)"},
-        {"contact_geometry", 9, GEOMETRY_NOUT, geometry_loop,
-         "geometry and moduli -> the load-independent fields and coefficients (private)"},
+        {"contact_load", 10, HERTZ_NGIVEN, contact_load_loop,
+         "geometry, moduli, load -> a, b, load, p0, delta, stiffness (private)"},
+        {"contact_approach", 10, HERTZ_NGIVEN, contact_approach_loop,
+         "geometry, moduli, approach -> a, b, load, p0, delta, stiffness (private)"},
+        {"contact_p0", 10, HERTZ_NGIVEN, contact_p0_loop,
+         "geometry, moduli, peak pressure -> a, b, load, p0, delta, stiffness (private)"},
+        {"contact_geometry", 9, NFIELDS, geometry_loop,
+         "geometry and moduli -> lambda, alpha, m, K, E, e_star, rho_x, rho_y, theta "
+         "(private)"},
+        {"contact_coefficients", 9, GEOMETRY_NOUT, coefficients_loop,
+         "geometry and moduli -> the contact_geometry fields and the load-pass "
+         "coefficients (private)"},
         {"given_load", 10, 6, given_load_loop,
          "coefficients and load -> a, b, load, p0, delta, stiffness (private)"},
         {"given_approach", 10, 6, given_approach_loop,

@@ -8,9 +8,9 @@ relation (the seed's eq. (alpha_lambda_relation))
 found by a bracketing solver in u = ln(lambda) with mpmath's own complete
 elliptic integrals (parameter convention), at 50 significant digits plus
 guard digits for the cancellation near alpha = 1 and the tiny 1 - m at large
-alpha.  The contact quantities follow the seed's section 2 literally.
+alpha.  (The committed table tests/data/reference_lambda.csv was written at 50.)  The contact quantities follow the seed's section 2 literally.
 
-Importing this module sets mpmath's working precision to 50 digits, so that
+Importing this module sets mpmath's working precision to 60 digits, so that
 differences taken by the caller keep their accuracy.
 """
 
@@ -23,8 +23,8 @@ from dataclasses import dataclass
 
 import mpmath as mp
 
-DIGITS = 50
-mp.mp.dps = DIGITS  # callers compare against these values: keep 50 digits throughout
+DIGITS = 60
+mp.mp.dps = DIGITS  # callers compare against these values: keep 60 digits throughout
 TABLE = pathlib.Path(__file__).with_name("data") / "reference_lambda.csv"
 
 
@@ -72,14 +72,22 @@ def ellipse_ref(alpha) -> tuple[mp.mpf, mp.mpf, mp.mpf, mp.mpf]:
 
 
 def curvatures_ref(r1x, r1y, r2x, r2y, angle):
-    """Eigenvalues (rho_x >= rho_y) of the gap's curvature tensor, exact inputs."""
-    c, s = mp.cos(mp.mpf(angle)), mp.sin(mp.mpf(angle))
-    k = [0 if math.isinf(r) else 1 / mp.mpf(r) for r in (r1x, r1y, r2x, r2y)]
-    a = k[0] + k[2] * c * c + k[3] * s * s
-    b = k[1] + k[2] * s * s + k[3] * c * c
-    off = (k[2] - k[3]) * c * s
-    half = mp.sqrt(((a - b) / 2) ** 2 + off**2)
-    return (a + b) / 2 + half, (a + b) / 2 - half
+    """Eigenvalues (rho_x >= rho_y) of the gap's curvature tensor, exact inputs.
+
+    Evaluated at 800 digits, so that a nearly singular tensor (crossed
+    cylinders at an angle of 1e-150, conforming radii equal to 1e-16)
+    keeps 50 correct digits in rho_y = det / rho_x.
+    """
+    with mp.workdps(800):
+        c, s = mp.cos(mp.mpf(angle)), mp.sin(mp.mpf(angle))
+        k = [0 if math.isinf(r) else 1 / mp.mpf(r) for r in (r1x, r1y, r2x, r2y)]
+        a = k[0] + k[2] * c * c + k[3] * s * s
+        b = k[1] + k[2] * s * s + k[3] * c * c
+        off = (k[2] - k[3]) * c * s
+        half = mp.sqrt(((a - b) / 2) ** 2 + off**2)
+        rho_x = (a + b) / 2 + half
+        rho_y = (a * b - off**2) / rho_x if rho_x else (a + b) / 2 - half
+        return +rho_x, +rho_y
 
 
 @dataclass
@@ -94,8 +102,8 @@ class ContactRef:
 
 def contact_ref(body1, body2, load, angle=0.0) -> ContactRef:
     """The seed's contact formulas evaluated in mpmath; bodies are (Rx, Ry, E, nu) tuples."""
+    rho_x, rho_y = curvatures_ref(body1[0], body1[1], body2[0], body2[1], angle)
     with mp.workdps(DIGITS + 40):
-        rho_x, rho_y = curvatures_ref(body1[0], body1[1], body2[0], body2[1], angle)
         e_star = 1 / sum((1 - mp.mpf(nu) ** 2) / mp.mpf(e) for _, _, e, nu in (body1, body2))
         alpha = rho_x / rho_y
         rho_sum = rho_x + rho_y
