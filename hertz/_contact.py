@@ -64,6 +64,14 @@ def _require(name: str, value, ok, allowed: str) -> None:
         raise error_at(name, value, first_failure(ok), allowed)
 
 
+def _check_body_fields(Rx, Ry, E, nu) -> None:
+    with np.errstate(invalid="ignore"):
+        _require("Rx", Rx, (Rx != 0) & (Rx == Rx), _RADIUS)
+        _require("Ry", Ry, (Ry != 0) & (Ry == Ry), _RADIUS)
+        _require("E", E, (E > 0) & (E < math.inf), _MODULUS)
+        _require("nu", nu, (nu > -1) & (nu <= 0.5), _POISSON)
+
+
 @dataclass(frozen=True, slots=True, init=False)
 class Body:
     """An elastic body near its contact point.
@@ -109,18 +117,19 @@ class Body:
     _scalar: bool = field(repr=False, compare=False)
 
     def __init__(self, Rx, Ry, E, nu):
-        Rx, Ry, E, nu = _real(Rx, "Rx"), _real(Ry, "Ry"), _real(E, "E"), _real(nu, "nu")
-        with np.errstate(invalid="ignore"):
-            _require("Rx", Rx, (Rx != 0) & (Rx == Rx), _RADIUS)
-            _require("Ry", Ry, (Ry != 0) & (Ry == Ry), _RADIUS)
-            _require("E", E, (E > 0) & (E < math.inf), _MODULUS)
-            _require("nu", nu, (nu > -1) & (nu <= 0.5), _POISSON)
+        scalar = type(Rx) is type(Ry) is type(E) is type(nu) is float
+        if not scalar:
+            Rx, Ry, E, nu = _real(Rx, "Rx"), _real(Ry, "Ry"), _real(E, "E"), _real(nu, "nu")
+            scalar = type(Rx) is type(Ry) is type(E) is type(nu) is float
+        if not scalar or not (Rx != 0 and Ry != 0 and 0 < E < math.inf and -1 < nu <= 0.5) \
+                or Rx != Rx or Ry != Ry:
+            _check_body_fields(Rx, Ry, E, nu)
         setter = object.__setattr__
         setter(self, "Rx", Rx)
         setter(self, "Ry", Ry)
         setter(self, "E", E)
         setter(self, "nu", nu)
-        setter(self, "_scalar", type(Rx) is type(Ry) is type(E) is type(nu) is float)
+        setter(self, "_scalar", scalar)
 
     @classmethod
     def sphere(cls, R, E, nu) -> Body:
@@ -280,6 +289,9 @@ class Contact:
         y = as_float_array(y, "y")
         with np.errstate(divide="ignore", invalid="ignore"):
             return _semi_elliptic(self.p0, np.square(x / self.a) + np.square(y / self.b))
+
+
+_ufuncs.register_contact_type(Contact)
 
 
 def _solve_geometry(inputs, shape):
@@ -450,9 +462,8 @@ def contact(body1: Body, body2: Body, load=None, angle=0.0, *, approach=None,
     kind_v, kind_a = type(value), type(angle)
     if (body1._scalar and body2._scalar and (kind_v is float or kind_v is int)
             and (kind_a is float or kind_a is int)):
-        t = _ufuncs.contact(mode, body1.Rx, body1.Ry, body2.Rx, body2.Ry, angle, body1.E,
-                            body1.nu, body2.E, body2.nu, value)
-        return Contact(t[0], t[1], t[2], t[3], t[4], t[5], t[6:])
+        return _ufuncs.contact(mode, body1.Rx, body1.Ry, body2.Rx, body2.Ry, angle, body1.E,
+                               body1.nu, body2.E, body2.nu, value)
     args = [body1.Rx, body1.Ry, body2.Rx, body2.Ry, _real_arg(angle, "angle"), body1.E,
             body1.nu, body2.E, body2.nu, _real_arg(value, name)]
     geometry = args[:9]
@@ -465,8 +476,7 @@ def contact(body1: Body, body2: Body, load=None, angle=0.0, *, approach=None,
     try:
         if math.prod(geometry_shape) == math.prod(shape):
             if not shape:  # numpy scalars or 0-d arrays: the scalar path
-                t = _ufuncs.contact(mode, *(float(x) for x in args))
-                return Contact(t[0], t[1], t[2], t[3], t[4], t[5], t[6:])
+                return _ufuncs.contact(mode, *(float(x) for x in args))
             return Contact(*fused(*args), _Deferred(geometry, shape))
         # One geometry carries many loads: solve each geometry once and
         # broadcast its fields (read-only views) over the loads.

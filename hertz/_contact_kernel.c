@@ -52,14 +52,14 @@ pow2i(int e)
     return d;
 }
 
-/* x 2^e, rounded once. */
+/* x 2^e, rounded once where the result is normal (two exact steps that
+ * never leave the range between x and the result). */
 static inline double
 scale2(double x, int e)
 {
-    if (e >= -1000 && e <= 1000) {
-        return x * pow2i(e);
-    }
-    return ldexp(x, e);
+    e = e < -2044 ? -2044 : (e > 2046 ? 2046 : e);
+    int h = e / 2;
+    return x * pow2i(h) * pow2i(e - h);
 }
 
 /* Binary exponent of a finite x != 0 (subnormals included). */
@@ -225,52 +225,211 @@ curvatures(const double r[4], double angle, double *rx, double *ry, double *rs,
     return HERTZ_OK;
 }
 
+/* sin x and cos x for |x| <= FAST_ANGLE: x = k pi/2 + r with pi/2 split in
+ * three parts (the first two with 33 significant bits, so k P1 and k P2 are
+ * exact for |k| < 2^20), then the Taylor series of sin r and cos r to
+ * r^17 and r^18 (truncation below 1e-18 for |r| <= pi/4).  Branch-free, so
+ * that a block vectorises; odd and even in x exactly. */
+#define FAST_ANGLE 1e5
+
+static inline void
+sin_cos(double x, double *sin_x, double *cos_x)
+{
+    static const double P1 = 0x1.921fb54400000p+0, P2 = 0x1.0b4611a600000p-34,
+                        P3 = 0x1.3198a2e037073p-69, TWO_OVER_PI = 0x1.45f306dc9c883p-1,
+                        ROUND = 0x1.8p52;
+    double t = x * TWO_OVER_PI + ROUND;
+    double k = t - ROUND;
+    uint64_t bits;
+    memcpy(&bits, &t, sizeof bits);
+    int quadrant = (int)(bits & 3);
+    double r = ((x - k * P1) - k * P2) - k * P3, z = r * r;
+    double sp = -1.0 / 6, cp = -1.0 / 2;
+    sp = -1.0 / 355687428096000.0;               /* -1/17! */
+    sp = 1.0 / 1307674368000.0 + z * sp;         /* 1/15! */
+    sp = -1.0 / 6227020800.0 + z * sp;           /* -1/13! */
+    sp = 1.0 / 39916800.0 + z * sp;              /* 1/11! */
+    sp = -1.0 / 362880.0 + z * sp;               /* -1/9! */
+    sp = 1.0 / 5040.0 + z * sp;                  /* 1/7! */
+    sp = -1.0 / 120.0 + z * sp;                  /* -1/5! */
+    sp = 1.0 / 6.0 + z * sp;                     /* 1/3! */
+    double sr = r - r * z * sp;
+    cp = 1.0 / 6402373705728000.0;               /* 1/18! */
+    cp = -1.0 / 20922789888000.0 + z * cp;       /* -1/16! */
+    cp = 1.0 / 87178291200.0 + z * cp;           /* 1/14! */
+    cp = -1.0 / 479001600.0 + z * cp;            /* -1/12! */
+    cp = 1.0 / 3628800.0 + z * cp;               /* 1/10! */
+    cp = -1.0 / 40320.0 + z * cp;                /* -1/8! */
+    cp = 1.0 / 720.0 + z * cp;                   /* 1/6! */
+    cp = -1.0 / 24.0 + z * cp;                   /* -1/4! */
+    cp = 0.5 + z * cp;                           /* 1/2! */
+    double cr = 1.0 - z * cp;
+    double sv = (quadrant & 1) ? cr : sr, cv = (quadrant & 1) ? sr : cr;
+    *sin_x = (quadrant & 2) ? -sv : sv;
+    *cos_x = ((quadrant + 1) & 2) ? -cv : cv;
+}
+
+/* m in [1, 2) and e with x = m 2^e, for a normal x > 0 (bits only). */
+static inline double
+split_normal(double x, int *e)
+{
+    uint64_t bits;
+    memcpy(&bits, &x, sizeof bits);
+    *e = (int)((bits >> 52) & 0x7FF) - 1023;
+    bits = (bits & 0x000FFFFFFFFFFFFFull) | 0x3FF0000000000000ull;
+    memcpy(&x, &bits, sizeof x);
+    return x;
+}
+
+/* Stage 1 of a block, the common case, branch-free: inputs in range
+ * (finite radii within 2^+-300, normal moduli within 2^+-1000, |angle| <=
+ * FAST_ANGLE) and a valid contact.  Elements outside it are flagged in
+ * `other` and done by the scalar code (curvatures, reduced_modulus), which
+ * also names any error. */
+HERTZ_MULTIVERSION static void
+fast_geometry(ptrdiff_t n, const double *const in[HERTZ_NGEOMETRY], double *restrict alpha,
+              double *restrict rho_sum, int *restrict ce, double *restrict es_m,
+              int *restrict es_e, double *restrict rho_x, double *restrict rho_y,
+              int *restrict other)
+{
+    const double *restrict R1X = in[HERTZ_R1X], *restrict R1Y = in[HERTZ_R1Y];
+    const double *restrict R2X = in[HERTZ_R2X], *restrict R2Y = in[HERTZ_R2Y];
+    const double *restrict ANGLE = in[HERTZ_ANGLE];
+    const double *restrict E1 = in[HERTZ_E1], *restrict NU1 = in[HERTZ_NU1];
+    const double *restrict E2 = in[HERTZ_E2], *restrict NU2 = in[HERTZ_NU2];
+    for (ptrdiff_t i = 0; i < n; ++i) {
+        double r1x = R1X[i], r1y = R1Y[i], r2x = R2X[i], r2y = R2Y[i];
+        double angle = ANGLE[i];
+        double e1 = E1[i], nu1 = NU1[i], e2 = E2[i], nu2 = NU2[i];
+        const double lo = 0x1p-300, hi = 0x1p300;
+#define RADIUS_OK(r) ((fabs(r) >= lo && fabs(r) <= hi) || fabs(r) == INFINITY)
+        int ok = RADIUS_OK(r1x) && RADIUS_OK(r1y) && RADIUS_OK(r2x) && RADIUS_OK(r2y)
+                 && fabs(angle) <= FAST_ANGLE && e1 >= 0x1p-1000 && e1 <= 0x1p1000
+                 && e2 >= 0x1p-1000 && e2 <= 0x1p1000 && nu1 > -1.0 && nu1 <= 0.5
+                 && nu2 > -1.0 && nu2 <= 0.5;
+#undef RADIUS_OK
+        /* sanitised inputs where not ok, so that nothing below traps or
+         * takes long; the element is redone by the scalar code */
+        r1x = ok ? r1x : 1.0;
+        r1y = ok ? r1y : 1.0;
+        r2x = ok ? r2x : 1.0;
+        r2y = ok ? r2y : 1.0;
+        angle = ok ? angle : 0.0;
+        e1 = ok ? e1 : 1.0;
+        e2 = ok ? e2 : 1.0;
+        double px = r1x * r2x, py = r1y * r2y, q1 = r1x * r1y, q2 = r2x * r2y;
+        double k1x = 1.0 / r1x, k1y = 1.0 / r1y, k2x = 1.0 / r2x, k2y = 1.0 / r2y;
+        double sx = (px < 0.0 && px > -INFINITY) ? (r1x + r2x) / px : k1x + k2x;
+        double sy = (py < 0.0 && py > -INFINITY) ? (r1y + r2y) / py : k1y + k2y;
+        double g1 = (q1 > 0.0 && q1 < INFINITY) ? (r1y - r1x) / q1 : k1x - k1y;
+        double g2 = (q2 > 0.0 && q2 < INFINITY) ? (r2y - r2x) / q2 : k2x - k2y;
+        double big = fabs(sx) > fabs(sy) ? fabs(sx) : fabs(sy);
+        big = fabs(g1) > big ? fabs(g1) : big;
+        big = fabs(g2) > big ? fabs(g2) : big;
+        ok = ok && big > 0.0;
+        int t;
+        split_normal(ok ? big : 1.0, &t);
+        double f = pow2i(-t);
+        sx *= f;
+        sy *= f;
+        g1 *= f;
+        g2 *= f;
+        double sn, cs;
+        sin_cos(angle, &sn, &cs);
+        double ss = sn * sn, cc = cs * cs, gg = g1 * g2;
+        double trace = sx + sy, det = sx * sy + gg * ss;                        /* (1) */
+        double dg = gg >= 0.0 ? g1 - g2 : g1 + g2;
+        double d = sqrt(dg * dg + 4.0 * fabs(gg) * (gg >= 0.0 ? cc : ss));      /* (2) */
+        double rx = 0.5 * (trace + d);
+        double ry = d <= 0.5 * trace ? 0.5 * (trace - d) : det / rx;
+        ry = ry < rx ? ry : rx;
+        int aligned = sn == 0.0;
+        double rx0 = sx > sy ? sx : sy, ry0 = sx > sy ? sy : sx;
+        rx = aligned ? rx0 : rx;
+        ry = aligned ? ry0 : ry;
+        ok = ok && rx > 0.0 && ry >= DBL_MIN && (aligned || det >= DBL_MIN)
+             && rx / ry <= DBL_MAX;
+        other[i] = !ok;
+        alpha[i] = ok ? rx / ry : 1.0;
+        rho_sum[i] = ok ? sx + sy : 1.0;
+        ce[i] = t;
+        rho_x[i] = rx * pow2i(t);
+        rho_y[i] = ry * pow2i(t);
+        /* E* as in reduced_modulus, normal moduli only */
+        double c1 = (1.0 - nu1) * (1.0 + nu1), c2 = (1.0 - nu2) * (1.0 + nu2);
+        int swap = e1 > e2 || (e1 == e2 && c1 > c2);
+        double elo = swap ? e2 : e1, ehi = swap ? e1 : e2;
+        double clo = swap ? c2 : c1, chi = swap ? c1 : c2;
+        int ee;
+        double em = split_normal(elo, &ee);
+        es_m[i] = em / (clo + chi * (elo / ehi));
+        es_e[i] = ee;
+    }
+}
+
 int
 hertz_geometry_block(ptrdiff_t n, const double *const in[HERTZ_NGEOMETRY],
                      hertz_geometry *g, ptrdiff_t *bad, int with_theta)
 {
     double alpha[HERTZ_BLOCK] = {0.0}, lam[HERTZ_BLOCK], m[HERTZ_BLOCK], K[HERTZ_BLOCK],
-        E[HERTZ_BLOCK], rs[HERTZ_BLOCK];
-    int ce[HERTZ_BLOCK];
-    hertz_scaled es[HERTZ_BLOCK];
+        E[HERTZ_BLOCK], rs[HERTZ_BLOCK], esm[HERTZ_BLOCK], rx[HERTZ_BLOCK], ry[HERTZ_BLOCK];
+    int ce[HERTZ_BLOCK], ese[HERTZ_BLOCK];
+    int other[HERTZ_BLOCK];
+    fast_geometry(n, in, alpha, rs, ce, esm, ese, rx, ry, other);
     for (ptrdiff_t i = 0; i < n; ++i) {
+        g[i].theta = 0.0;
+        g[i].rho_x = rx[i];
+        g[i].rho_y = ry[i];
+        if (!other[i] && !with_theta) {
+            continue;
+        }
         double r[4] = {in[HERTZ_R1X][i], in[HERTZ_R1Y][i], in[HERTZ_R2X][i], in[HERTZ_R2Y][i]};
-        double rx = 0.0, ry = 0.0;
-        int code = curvatures(r, in[HERTZ_ANGLE][i], &rx, &ry, &rs[i], &ce[i], &g[i].theta,
+        double rxi = 0.0, ryi = 0.0, rsi, theta = 0.0;
+        int cei;
+        hertz_scaled esi;
+        int code = curvatures(r, in[HERTZ_ANGLE][i], &rxi, &ryi, &rsi, &cei, &theta,
                               with_theta);
+        if (!other[i]) { /* only the angle was missing */
+            g[i].theta = theta;
+            continue;
+        }
         if (code == HERTZ_OK) {
             code = reduced_modulus(in[HERTZ_E1][i], in[HERTZ_NU1][i], in[HERTZ_E2][i],
-                                   in[HERTZ_NU2][i], &es[i]);
+                                   in[HERTZ_NU2][i], &esi);
         }
+        g[i].rho_x = scale2(rxi, cei);
+        g[i].rho_y = scale2(ryi, cei);
         if (code != HERTZ_OK) {
-            g[i].rho_x = scale2(rx, ce[i]);
-            g[i].rho_y = scale2(ry, ce[i]);
             *bad = i;
             return code;
         }
-        alpha[i] = rx / ry;
-        g[i].alpha = alpha[i];
-        g[i].rho_x = scale2(rx, ce[i]);
-        g[i].rho_y = scale2(ry, ce[i]);
-        g[i].e_star = scale2(es[i].m, es[i].e);
+        alpha[i] = rxi / ryi;
+        rs[i] = rsi;
+        ce[i] = cei;
+        esm[i] = esi.m;
+        ese[i] = esi.e;
+        g[i].theta = theta;
     }
     hertz_ellipse_block(alpha, n, 1, lam, m, K, E);
     for (ptrdiff_t i = 0; i < n; ++i) {
-        hertz_scaled rho = split(rs[i]);
-        int er = rho.e + ce[i];
+        int er;
+        double rho_m = split_normal(rs[i], &er);
+        er += ce[i];
         double half_e = 0.5 / E[i];
+        g[i].e_star = scale2(esm[i], ese[i]);
+        g[i].alpha = alpha[i];
         g[i].lam = lam[i];
         g[i].m = m[i];
         g[i].K = K[i];
         g[i].E = E[i];
-        g[i].cb.m = 3.0 * E[i] / (PI * lam[i] * es[i].m * rho.m);
-        g[i].cb.e = -(es[i].e + er);
-        g[i].cd.m = K[i] * rho.m * half_e;
+        g[i].cb.m = 3.0 * E[i] / (PI * lam[i] * esm[i] * rho_m);
+        g[i].cb.e = -(ese[i] + er);
+        g[i].cd.m = K[i] * rho_m * half_e;
         g[i].cd.e = er;
-        g[i].cp.m = es[i].m * rho.m * half_e;
-        g[i].cp.e = es[i].e + er;
-        g[i].cs.m = PI * lam[i] * es[i].m / K[i];
-        g[i].cs.e = es[i].e;
+        g[i].cp.m = esm[i] * rho_m * half_e;
+        g[i].cp.e = ese[i] + er;
+        g[i].cs.m = PI * lam[i] * esm[i] / K[i];
+        g[i].cs.e = ese[i];
     }
     return HERTZ_OK;
 }
@@ -326,6 +485,21 @@ dd_scale(double c, double h, double l)
     return p + (e + c * l);
 }
 
+/* x^(1/3) for 1 <= x < 8 to about 1e-10 (a degree-4 least-squares
+ * polynomial for [1, 2], times 2^(j/3), then one Newton step); the caller's
+ * double-double Newton step completes it. */
+static inline double
+cube_root(double x)
+{
+    static const double C[5] = {1.1447129219983228, 0.2542825412449247, -0.05643544389416345,
+                                0.02247174566566939, -0.010274592492448192};
+    static const double ROOT2[3] = {1.0, 1.2599210498948732, 1.5874010519681994};
+    int j = (x >= 2.0) + (x >= 4.0);
+    double m = x / (j == 0 ? 1.0 : (j == 1 ? 2.0 : 4.0)), t = m - 1.5;
+    double y = (C[0] + t * (C[1] + t * (C[2] + t * (C[3] + t * C[4])))) * ROOT2[j];
+    return y - (y * y * y - x) / (3.0 * y * y);
+}
+
 static inline int
 floor_div(int e, int k)
 {
@@ -351,12 +525,15 @@ hertz_contact_given(const hertz_geometry *g, int mode, double value,
     if (mode == HERTZ_GIVEN_LOAD) {
         /* b^3 = cb P = (xh + xl) 2^(3q): cube root, one Newton step in double-double */
         double xl, xh = two_prod(g->cb.m, v.m, &xl);
-        e = g->cb.e + v.e;
+        int xe;
+        double xm = split_normal(xh, &xe);
+        xl *= xm / xh; /* a power of two: exact */
+        e = g->cb.e + v.e + xe;
         q = floor_div(e, 3);
         double f = (double)(1 << (e - 3 * q));
-        xh *= f;
+        xh = xm * f;
         xl *= f;
-        bh = cbrt(xh);
+        bh = cube_root(xh);
         double sl, sh = two_prod(bh, bh, &sl), cl, ch = dd_mul(sh, sl, bh, 0.0, &cl);
         bl = ((xh - ch) - cl + xl) / (3.0 * sh);
         load = value;

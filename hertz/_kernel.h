@@ -8,6 +8,17 @@
 
 #include <stddef.h>
 
+/* With GCC or Clang on x86-64 Linux, block functions are also compiled for
+ * AVX2 and the better one is chosen at load time; elementwise operations
+ * round the same way at any vector width (and -ffp-contract=off forbids
+ * fused multiply-adds), so both give the same bits.  -DHERTZ_PLAIN builds
+ * the plain version only (tests/test_kernel_builds.py compares them). */
+#if defined(__GNUC__) && defined(__x86_64__) && defined(__linux__) && !defined(HERTZ_PLAIN)
+#define HERTZ_MULTIVERSION __attribute__((target_clones("avx2", "default")))
+#else
+#define HERTZ_MULTIVERSION
+#endif
+
 /* Largest n accepted by hertz_ellipse_block. */
 #define HERTZ_BLOCK 64
 

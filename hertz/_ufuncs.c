@@ -16,6 +16,7 @@
  */
 #define PY_SSIZE_T_CLEAN
 #include <Python.h>
+#include <structmember.h>
 
 #define NPY_NO_DEPRECATED_API NPY_2_0_API_VERSION
 #define NPY_TARGET_VERSION NPY_2_0_API_VERSION
@@ -497,11 +498,72 @@ floats(PyObject *const *args, Py_ssize_t nargs, Py_ssize_t want, double *x, cons
     return 0;
 }
 
+/* The result class (hertz.Contact, a slotted frozen dataclass) and the
+ * offsets of its slots a, b, load, p0, delta, stiffness and _geometry, so
+ * that a scalar call builds its result without running Python code. */
+static PyTypeObject *contact_type = NULL;
+static Py_ssize_t contact_offsets[HERTZ_NGIVEN + 1];
+
+PyDoc_STRVAR(register_doc,
+"register_contact_type(cls)\n\n"
+"Let contact() return instances of cls, a class with slots a, b, load, p0,\n"
+"delta, stiffness and _geometry.  Private: hertz._contact calls it once.");
+
+static PyObject *
+register_contact_type(PyObject *self, PyObject *cls)
+{
+    (void)self;
+    static const char *const names[HERTZ_NGIVEN + 1] = {"a", "b", "load", "p0", "delta",
+                                                        "stiffness", "_geometry"};
+    if (!PyType_Check(cls)) {
+        PyErr_SetString(PyExc_TypeError, "register_contact_type: a class is required");
+        return NULL;
+    }
+    for (int k = 0; k <= HERTZ_NGIVEN; ++k) {
+        PyObject *d = PyDict_GetItemString(((PyTypeObject *)cls)->tp_dict, names[k]);
+        if (d == NULL || !PyObject_TypeCheck(d, &PyMemberDescr_Type)
+            || ((PyMemberDescrObject *)d)->d_member->type != T_OBJECT_EX) {
+            PyErr_Format(PyExc_TypeError, "register_contact_type: no slot %s", names[k]);
+            return NULL;
+        }
+        contact_offsets[k] = ((PyMemberDescrObject *)d)->d_member->offset;
+    }
+    Py_XSETREF(contact_type, (PyTypeObject *)Py_NewRef(cls));
+    Py_RETURN_NONE;
+}
+
+/* An instance of the registered class from the HERTZ_NOUT fields. */
+static PyObject *
+new_contact(const double *fields)
+{
+    PyObject *geometry = tuple_of(fields + HERTZ_NGIVEN, HERTZ_NOUT - HERTZ_NGIVEN);
+    if (geometry == NULL) {
+        return NULL;
+    }
+    PyObject *obj = contact_type->tp_alloc(contact_type, 0);
+    if (obj == NULL) {
+        Py_DECREF(geometry);
+        return NULL;
+    }
+    for (int k = 0; k < HERTZ_NGIVEN; ++k) {
+        PyObject *f = PyFloat_FromDouble(fields[k]);
+        if (f == NULL) {
+            Py_DECREF(geometry);
+            Py_DECREF(obj);
+            return NULL;
+        }
+        *(PyObject **)((char *)obj + contact_offsets[k]) = f;
+    }
+    *(PyObject **)((char *)obj + contact_offsets[HERTZ_NGIVEN]) = geometry;
+    return obj;
+}
+
 PyDoc_STRVAR(contact_scalar_doc,
-"contact(mode, r1x, r1y, r2x, r2y, angle, E1, nu1, E2, nu2, value) -> tuple\n\n"
+"contact(mode, r1x, r1y, r2x, r2y, angle, E1, nu1, E2, nu2, value) -> Contact\n\n"
 "One point contact from Python floats; mode 0, 1, 2: value is the load,\n"
-"approach or p0.  Returns (a, b, load, p0, delta, stiffness, lambda, alpha,\n"
-"m, K, E, e_star, rho_x, rho_y, theta).\n"
+"approach or p0.  Returns an instance of the registered class (or, before\n"
+"one is registered, the tuple (a, b, load, p0, delta, stiffness, lambda,\n"
+"alpha, m, K, E, e_star, rho_x, rho_y, theta)).\n"
 "Private: use hertz.contact.");
 
 static PyObject *
@@ -534,7 +596,7 @@ contact_scalar(PyObject *self, PyObject *const *args, Py_ssize_t nargs)
         return NULL;
     }
     hertz_geometry_fields(&g, fields + HERTZ_NGIVEN);
-    return tuple_of(fields, HERTZ_NOUT);
+    return contact_type ? new_contact(fields) : tuple_of(fields, HERTZ_NOUT);
 }
 
 PyDoc_STRVAR(line_scalar_doc,
@@ -629,6 +691,7 @@ associate_integrals(PyObject *self, PyObject *args)
 static PyMethodDef methods[] = {
     {"contact", (PyCFunction)(void (*)(void))contact_scalar, METH_FASTCALL, contact_scalar_doc},
     {"line_contact", (PyCFunction)(void (*)(void))line_scalar, METH_FASTCALL, line_scalar_doc},
+    {"register_contact_type", register_contact_type, METH_O, register_doc},
     {"simd", simd, METH_VARARGS, simd_doc},
     {"associate_integrals", associate_integrals, METH_VARARGS, assoc_doc},
     {NULL, NULL, 0, NULL},
