@@ -72,12 +72,22 @@ exponent_of(double x)
     return biased ? biased - 1023 : ilogb(x);
 }
 
-/* x = m 2^e with m in [1, 2), for a finite x > 0. */
+/* x = m 2^e with m in [1, 2), for a finite x > 0 (subnormals included). */
 static inline hertz_scaled
 split(double x)
 {
-    int e = exponent_of(x);
-    hertz_scaled s = {e >= -1022 ? x * pow2i(-e) : ldexp(x, -e), e};
+    uint64_t bits;
+    memcpy(&bits, &x, sizeof bits);
+    hertz_scaled s;
+    if ((bits >> 52) & 0x7FF) {
+        s.e = (int)((bits >> 52) & 0x7FF) - 1023;
+        bits = (bits & 0x000FFFFFFFFFFFFFull) | 0x3FF0000000000000ull;
+        memcpy(&s.m, &bits, sizeof s.m);
+    }
+    else {
+        s.e = ilogb(x);
+        s.m = ldexp(x, -s.e);
+    }
     return s;
 }
 

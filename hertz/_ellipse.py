@@ -138,7 +138,11 @@ def ellipticity(alpha, *, iterations=DEFAULT_ITERATIONS, out=None):
     if out is None and type(alpha) is float:
         return float(ufunc(alpha))
     if is_duck_array(alpha):
-        return ufunc(alpha) if out is None else ufunc(alpha, out=out)
+        # dtype given, so that dask need not try the ufunc on uninitialised
+        # memory to learn the result type (a ValueError there would hide it)
+        if out is None:
+            return ufunc(alpha, dtype=np.float64)
+        return ufunc(alpha, out=out, dtype=np.float64)
     arr = as_float_array(alpha, "alpha")
     try:
         lam = ufunc(arr) if out is None else ufunc(arr, out=out)

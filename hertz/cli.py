@@ -24,8 +24,9 @@ A scene file holds the same names as the options::
     E = 210e9
     nu = 0.3
 
-Errors (bad values, a missing file, no Hertz contact) print one line on
-stderr and exit with status 2.
+Errors (bad values, a missing file, no Hertz contact, output that cannot
+be written) print one line on stderr and exit with status 2.  ``--json``
+prints strict JSON: a value that overflows a double is ``null``.
 """
 
 from __future__ import annotations
@@ -93,8 +94,10 @@ def _read_scene(path: str) -> dict:
             scene = tomllib.load(f)
     except OSError as exc:
         raise _UsageError(f"cannot read scene file {path!r}: {exc.strerror}") from None
-    except tomllib.TOMLDecodeError as exc:
+    except (tomllib.TOMLDecodeError, UnicodeDecodeError) as exc:
         raise _UsageError(f"scene file {path!r} is not valid TOML: {exc}") from None
+    except RecursionError:
+        raise _UsageError(f"scene file {path!r} is nested too deeply to read") from None
     merged = {k: (dict(v) if isinstance(v, dict) else v) for k, v in DEFAULT_SCENE.items()}
     merged["name"] = path
     for key, value in scene.items():
@@ -106,13 +109,35 @@ def _read_scene(path: str) -> dict:
                 names = ", ".join(sorted(unknown))
                 raise _UsageError(f"scene file: unknown key(s) in [{key}]: {names}")
             merged[key].update(value)
-        elif key in ("name", "load", "approach", "angle_deg"):
+        elif key in ("load", "approach", "angle_deg"):
+            merged[key] = _scalar(value, key)
+        elif key == "name":
+            if not isinstance(value, str):
+                raise _UsageError(f"scene file: name must be a string, got {_kind(value)}")
             merged[key] = value
         else:
             raise _UsageError(f"scene file: unknown key {key!r}")
-    if "approach" in scene and "load" not in scene:
+    if "approach" in scene:
+        if "load" in scene:
+            raise _UsageError("scene file: give one of load and approach, not both")
         merged.pop("load")
     return merged
+
+
+def _kind(value) -> str:
+    return {list: "an array", dict: "a table"}.get(type(value), type(value).__name__)
+
+
+def _scalar(value, name: str) -> float:
+    """A number from a scene file: an int or float, or a string that spells one ("inf")."""
+    if isinstance(value, bool) or not isinstance(value, (int, float, str)):
+        raise _UsageError(f"{name} must be a number, got {_kind(value)}: {value!r}"[:200])
+    if isinstance(value, str):
+        try:
+            return float(value)
+        except ValueError:
+            raise _UsageError(f"{name} must be a number, got {value!r}") from None
+    return float(value)
 
 
 def _scene(args) -> dict:
@@ -138,15 +163,7 @@ def _scene(args) -> dict:
 
 
 def _body(spec: dict, name: str) -> Body:
-    values = {}
-    for key in _BODY_KEYS:
-        value = spec[key]
-        if isinstance(value, str):
-            try:
-                value = float(value)
-            except ValueError:
-                raise _UsageError(f"{name}.{key} must be a number, got {value!r}") from None
-        values[key] = value
+    values = {key: _scalar(spec[key], f"{name}.{key}") for key in _BODY_KEYS}
     try:
         return Body(**values)
     except (TypeError, ValueError) as exc:
@@ -209,8 +226,10 @@ def _table(scene, body1, body2, c) -> str:
 def _json(scene, c) -> str:
     keys = ("a", "b", "p0", "delta", "load", "ellipticity", "alpha", "m", "K", "E", "e_star",
             "rho_x", "rho_y", "rho_sum", "major_axis_angle", "p_mean", "area", "stiffness")
-    out = {"scene": scene["name"], **{k: float(getattr(c, k)) for k in keys}}
-    return json.dumps(out)
+    values = {k: float(getattr(c, k)) for k in keys}
+    out = {"scene": scene["name"], **{k: v if math.isfinite(v) else None
+                                      for k, v in values.items()}}
+    return json.dumps(out, allow_nan=False)
 
 
 def main(argv=None) -> int:
@@ -226,6 +245,10 @@ def main(argv=None) -> int:
         print(_json(scene, c) if args.json else _table(scene, body1, body2, c), flush=True)
     except BrokenPipeError:  # `hertz | head`: the reader left; stop quietly
         os.dup2(os.open(os.devnull, os.O_WRONLY), sys.stdout.fileno())
+    except OSError as exc:  # a full disk, a closed descriptor
+        os.dup2(os.open(os.devnull, os.O_WRONLY), sys.stdout.fileno())
+        print(f"hertz: error: cannot write the output: {exc.strerror or exc}", file=sys.stderr)
+        return 2
     return 0
 
 
