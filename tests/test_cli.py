@@ -80,6 +80,42 @@ def test_bad_input_is_one_line_and_status_2(capsys, argv, message):
     assert err.count("\n") == 1 and err.startswith("hertz: error: ") and message in err
 
 
+@pytest.mark.parametrize("text, message", [
+    ("load = [1.0, 2.0]\n", "load must be a number, got an array"),
+    ("[body1]\nRx = [1e-3, 2e-3]\n", "body1.Rx must be a number, got an array"),
+    ("x = " + "[" * 5000 + "]" * 5000 + "\n", "nested too deeply"),
+    ('angle_deg = "thirty"\n', "angle_deg must be a number, got 'thirty'"),
+    ("angle_deg = true\n", "angle_deg must be a number"),
+    ("load = 1.0\napproach = 1e-6\n", "give one of load and approach, not both"),
+    ("name = 5\n", "name must be a string"),
+    ("[body2]\nE = {x = 1}\n", "body2.E must be a number, got a table"),
+])
+def test_hostile_scene_files(tmp_path, capsys, text, message):
+    path = tmp_path / "scene.toml"
+    path.write_text(text)
+    status, out, err = run(capsys, "--scene", str(path))
+    assert status == 2 and out == ""
+    assert err.count("\n") == 1 and message in err
+
+
+def test_json_is_strict(capsys):
+    status, out, _ = run(capsys, "--json", "--load", "1e308", "--e1", "1e-300", "--e2", "1e-300")
+    data = json.loads(out, parse_constant=lambda name: pytest.fail(f"non-JSON {name}"))
+    assert status == 0 and data["load"] == 1e308
+    assert data["stiffness"] is not None  # finite: the exact path does not overflow
+    assert any(value is None for value in data.values())  # p0 overflows: null, not Infinity
+
+
+@pytest.mark.skipif(not sys.platform.startswith("linux"), reason="/dev/full is Linux's")
+def test_a_full_disk_is_one_line_and_status_2():
+    exe = shutil.which("hertz")
+    cmd = [exe] if exe else [sys.executable, "-m", "hertz.cli"]
+    with open("/dev/full", "w") as full:
+        done = subprocess.run(cmd, stdout=full, stderr=subprocess.PIPE, text=True)
+    assert done.returncode == 2 and "Traceback" not in done.stderr
+    assert done.stderr.count("\n") == 1 and "No space left on device" in done.stderr
+
+
 def test_bad_scene_file(tmp_path, capsys):
     bad = tmp_path / "bad.toml"
     bad.write_text("load = [\n")
