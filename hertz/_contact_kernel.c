@@ -32,6 +32,18 @@
  * so a given load, approach or peak pressure first gives b and then the rest.
  * The coefficients and b carry their binary exponent apart (hertz_scaled):
  * P = 1e300 or E* = 5e-324 never overflow or lose digits before the root.
+ * b is carried in double-double (Dekker's products, no fused multiply-add)
+ * and every output is c b^k rounded once.
+ *
+ * Layout: a block of up to HERTZ_BLOCK elements goes through stages, each a
+ * loop over arrays written with doubles and 64-bit bit patterns only (no
+ * integer-double conversions, no branches), so that the compiler
+ * vectorises it: geometry (fast_geometry), the ellipse solver, the
+ * coefficients, the load-dependent outputs (given_*).  Elements outside the
+ * common case (radii beyond 2^+-300, extreme moduli, |angle| > 1e5, zero or
+ * subnormal values, no valid contact) are flagged and done by the scalar
+ * code, which also names errors.  A single contact goes through the same
+ * block code (n = 1), so it has the same bits as in an array.
  */
 #include <float.h>
 #include <math.h>
@@ -41,55 +53,181 @@
 #include "_contact_kernel.h"
 
 #define PI 3.14159265358979323846
+#define ROUND 0x1.8p52 /* (x + ROUND) - ROUND rounds x to an integer, |x| < 2^51 */
 
-/* 2^e for -1022 <= e <= 1023. */
+/* ---------------------------------------------------------- binary scaling */
+
 static inline double
-pow2i(int e)
+as_double(uint64_t bits)
 {
-    uint64_t bits = (uint64_t)(e + 1023) << 52;
     double d;
     memcpy(&d, &bits, sizeof d);
     return d;
 }
 
-/* x 2^e, rounded once where the result is normal (two exact steps that
- * never leave the range between x and the result). */
-static inline double
-scale2(double x, int e)
-{
-    e = e < -2044 ? -2044 : (e > 2046 ? 2046 : e);
-    int h = e / 2;
-    return x * pow2i(h) * pow2i(e - h);
-}
-
-/* Binary exponent of a finite x != 0 (subnormals included). */
-static inline int
-exponent_of(double x)
+static inline uint64_t
+as_bits(double d)
 {
     uint64_t bits;
-    memcpy(&bits, &x, sizeof bits);
-    int biased = (int)((bits >> 52) & 0x7FF);
-    return biased ? biased - 1023 : ilogb(x);
+    memcpy(&bits, &d, sizeof bits);
+    return bits;
 }
 
-/* x = m 2^e with m in [1, 2), for a finite x > 0 (subnormals included). */
-static inline hertz_scaled
+/* 2^e for an integer-valued e in [-1022, 1023]: the bits of e + 1023 + 2^52,
+ * shifted into the exponent field. */
+static inline double
+pow2(double e)
+{
+    return as_double(as_bits(e + (1023.0 + 0x1p52)) << 52);
+}
+
+/* x 2^e (e integer-valued), rounded once where the result is normal: two
+ * exact steps whose intermediate lies between x and the result. */
+static inline double
+scale2(double x, double e)
+{
+    e = e < -2044.0 ? -2044.0 : (e > 2046.0 ? 2046.0 : e);
+    double h = (e * 0.5 + ROUND) - ROUND;
+    return x * pow2(h) * pow2(e - h);
+}
+
+/* x = m 2^e with m in [1, 2), for a normal x > 0 (bits only). */
+static inline double
+split_normal(double x, double *e)
+{
+    uint64_t bits = as_bits(x);
+    *e = as_double((bits >> 52) | 0x4330000000000000ull) - (0x1p52 + 1023.0);
+    return as_double((bits & 0x000FFFFFFFFFFFFFull) | 0x3FF0000000000000ull);
+}
+
+/* The same for any finite x > 0, subnormals included. */
+static hertz_scaled
 split(double x)
 {
-    uint64_t bits;
-    memcpy(&bits, &x, sizeof bits);
     hertz_scaled s;
-    if ((bits >> 52) & 0x7FF) {
-        s.e = (int)((bits >> 52) & 0x7FF) - 1023;
-        bits = (bits & 0x000FFFFFFFFFFFFFull) | 0x3FF0000000000000ull;
-        memcpy(&s.m, &bits, sizeof s.m);
+    if (x >= DBL_MIN) {
+        s.m = split_normal(x, &s.e);
     }
     else {
-        s.e = ilogb(x);
-        s.m = ldexp(x, -s.e);
+        int e = ilogb(x);
+        s.m = ldexp(x, -e);
+        s.e = e;
     }
     return s;
 }
+
+/* Binary exponent of a finite x != 0. */
+static int
+exponent_of(double x)
+{
+    return ilogb(x);
+}
+
+/* ------------------------------------------------ double-double arithmetic */
+
+/* Dekker (1971), without fused multiply-add: a b = p + err exactly. */
+static inline void
+veltkamp(double a, double *hi, double *lo)
+{
+    double t = 134217729.0 * a; /* 2^27 + 1 */
+    *hi = t - (t - a);
+    *lo = a - *hi;
+}
+
+static inline double
+two_prod(double a, double b, double *err)
+{
+    double p = a * b, ah, al, bh, bl;
+    veltkamp(a, &ah, &al);
+    veltkamp(b, &bh, &bl);
+    *err = ((ah * bh - p) + ah * bl + al * bh) + al * bl;
+    return p;
+}
+
+/* (h + l)(x + y) as a double-double. */
+static inline double
+dd_mul(double h, double l, double x, double y, double *lo)
+{
+    double e, p = two_prod(h, x, &e);
+    e += h * y + l * x;
+    double s = p + e;
+    *lo = e - (s - p);
+    return s;
+}
+
+/* (h + l) / c, rounded once. */
+static inline double
+dd_div(double h, double l, double c)
+{
+    double q = h / c, e, p = two_prod(q, c, &e);
+    return q + (((h - p) - e) + l) / c;
+}
+
+/* c (h + l), rounded once. */
+static inline double
+dd_scale(double c, double h, double l)
+{
+    double e, p = two_prod(c, h, &e);
+    return p + (e + c * l);
+}
+
+/* -------------------------------------------------- elementary functions */
+
+/* sin x and cos x for |x| <= FAST_ANGLE: x = k pi/2 + r with pi/2 in three
+ * parts (the first two of 33 significant bits, so k P1 and k P2 are exact for
+ * |k| < 2^20), then the Taylor series of sin r and cos r to r^17 and r^18
+ * (truncation below 1e-18 for |r| <= pi/4).  Odd and even in x exactly. */
+#define FAST_ANGLE 1e5
+
+static inline void
+sin_cos(double x, double *sin_x, double *cos_x)
+{
+    const double P1 = 0x1.921fb54400000p+0, P2 = 0x1.0b4611a600000p-34,
+                 P3 = 0x1.3198a2e037073p-69, TWO_OVER_PI = 0x1.45f306dc9c883p-1;
+    double k = (x * TWO_OVER_PI + ROUND) - ROUND;
+    double r = ((x - k * P1) - k * P2) - k * P3, z = r * r;
+    double sp = -1.0 / 355687428096000.0;        /* -1/17! */
+    sp = 1.0 / 1307674368000.0 + z * sp;         /* 1/15! */
+    sp = -1.0 / 6227020800.0 + z * sp;           /* -1/13! */
+    sp = 1.0 / 39916800.0 + z * sp;              /* 1/11! */
+    sp = -1.0 / 362880.0 + z * sp;               /* -1/9! */
+    sp = 1.0 / 5040.0 + z * sp;                  /* 1/7! */
+    sp = -1.0 / 120.0 + z * sp;                  /* -1/5! */
+    sp = 1.0 / 6.0 + z * sp;                     /* 1/3! */
+    double sr = r - r * z * sp;
+    double cp = 1.0 / 6402373705728000.0;        /* 1/18! */
+    cp = -1.0 / 20922789888000.0 + z * cp;       /* -1/16! */
+    cp = 1.0 / 87178291200.0 + z * cp;           /* 1/14! */
+    cp = -1.0 / 479001600.0 + z * cp;            /* -1/12! */
+    cp = 1.0 / 3628800.0 + z * cp;               /* 1/10! */
+    cp = -1.0 / 40320.0 + z * cp;                /* -1/8! */
+    cp = 1.0 / 720.0 + z * cp;                   /* 1/6! */
+    cp = -1.0 / 24.0 + z * cp;                   /* -1/4! */
+    cp = 0.5 + z * cp;                           /* 1/2! */
+    double cr = 1.0 - z * cp;
+    /* j = k mod 4 in {-2, -1, 0, 1, 2}: quadrant 0, 3, 0, 1, 2 */
+    double j = k - 4.0 * ((k * 0.25 + ROUND) - ROUND);
+    double sv = fabs(j) == 1.0 ? cr : sr, cv = fabs(j) == 1.0 ? sr : cr;
+    *sin_x = j >= 2.0 ? -sv : (j < 0.0 ? -sv : sv);
+    *cos_x = j >= 1.0 ? -cv : (j <= -2.0 ? -cv : cv);
+}
+
+/* x^(1/3) for 1 <= x < 8 to about 1e-10: a degree-4 least-squares polynomial
+ * for the mantissa m in [1, 2) (fitted at Chebyshev nodes), times 2^(j/3),
+ * then one Newton step; the caller's double-double step completes it. */
+static inline double
+cube_root(double m, double j)
+{
+    const double C0 = 1.1447129219983228, C1 = 0.2542825412449247,
+                 C2 = -0.05643544389416345, C3 = 0.02247174566566939,
+                 C4 = -0.010274592492448192;
+    double x = m * (j >= 2.0 ? 4.0 : (j >= 1.0 ? 2.0 : 1.0)), t = m - 1.5;
+    double y = (C0 + t * (C1 + t * (C2 + t * (C3 + t * C4))))
+               * (j >= 2.0 ? 1.5874010519681994 : (j >= 1.0 ? 1.2599210498948732 : 1.0));
+    return y - (y * y * y - x) / (3.0 * y * y);
+}
+
+/* -------------------------------------------- the exact scalar geometry */
 
 /* 1/ra + 1/rb, a concave-convex pair without cancellation. */
 static inline double
@@ -147,11 +285,11 @@ reduced_modulus(double e1, double nu1, double e2, double nu2, hertz_scaled *e_st
 }
 
 /* Principal relative curvatures rho_x >= rho_y (as rx 2^e, ry 2^e), their
- * sum (rs 2^e) and the major-axis angle of one geometry.  HERTZ_OK or an
- * error code; rx, ry are set for the contact errors. */
+ * sum (rs 2^e) and the major-axis angle of one geometry, for any input.
+ * HERTZ_OK or an error code; rx, ry are set for the contact errors. */
 static int
 curvatures(const double r[4], double angle, double *rx, double *ry, double *rs,
-           int *e, double *theta, int with_theta)
+           double *e, double *theta, int with_theta)
 {
     static const int names[4] = {HERTZ_R1X, HERTZ_R1Y, HERTZ_R2X, HERTZ_R2Y};
     double radius[4];
@@ -180,17 +318,24 @@ curvatures(const double r[4], double angle, double *rx, double *ry, double *rs,
     double g1 = pair_difference(radius[0], radius[1]);
     double g2 = pair_difference(radius[2], radius[3]);
     /* Normalise so that the largest of them lies in [1, 2): products below
-     * cannot overflow, and a subnormal determinant means alpha > 1e300. */
+     * cannot overflow, and a subnormal determinant means alpha > 1e307. */
     double big = fmax(fmax(fabs(sx), fabs(sy)), fmax(fabs(g1), fabs(g2)));
     int t = big > 0.0 ? exponent_of(big) : 0;
-    double f = pow2i(-t < -1022 ? -1022 : (-t > 1023 ? 1023 : -t));
+    double f = pow2(-t < -1022 ? -1022 : (-t > 1023 ? 1023 : -t));
     sx *= f;
     sy *= f;
     g1 *= f;
     g2 *= f;
     *e = t - shift; /* true curvature = normalised one * 2^e */
-    double s = sin(angle), c = cos(angle);
-    double rho_x, rho_y, th;
+    double s, c;
+    if (fabs(angle) <= FAST_ANGLE) {
+        sin_cos(angle, &s, &c); /* as in fast_geometry: the same bits */
+    }
+    else {
+        s = sin(angle);
+        c = cos(angle);
+    }
+    double rho_x, rho_y, th = 0.0;
     if (s == 0.0) {
         rho_x = fmax(sx, sy);
         rho_y = fmin(sx, sy);
@@ -206,14 +351,12 @@ curvatures(const double r[4], double angle, double *rx, double *ry, double *rs,
         rho_y = d <= 0.5 * trace ? 0.5 * (trace - d) : (rho_x > 0.0 ? det / rho_x : 0.0);
         rho_y = fmin(rho_y, rho_x);
         if (rho_x > 0.0 && rho_y > 0.0 && !(det >= DBL_MIN)) {
-            rho_y = det > 0.0 ? det / rho_x : rho_y; /* for the message */
             *rx = rho_x;
-            *ry = rho_y;
+            *ry = det > 0.0 ? det / rho_x : rho_y;
             return HERTZ_LIMIT;
         }
         /* rho_x lies along atan2(g2 sin 2psi, g1 + g2 cos 2psi)/2; the major
          * axis (along rho_y) is normal to it. */
-        th = 0.0;
         if (with_theta && d != 0.0) {
             th = 0.5 * atan2(2.0 * g2 * s * c, g1 + g2 * (c - s) * (c + s)) + 0.5 * PI;
             th = th > 0.5 * PI ? th - PI : th;
@@ -235,111 +378,72 @@ curvatures(const double r[4], double angle, double *rx, double *ry, double *rs,
     return HERTZ_OK;
 }
 
-/* sin x and cos x for |x| <= FAST_ANGLE: x = k pi/2 + r with pi/2 split in
- * three parts (the first two with 33 significant bits, so k P1 and k P2 are
- * exact for |k| < 2^20), then the Taylor series of sin r and cos r to
- * r^17 and r^18 (truncation below 1e-18 for |r| <= pi/4).  Branch-free, so
- * that a block vectorises; odd and even in x exactly. */
-#define FAST_ANGLE 1e5
+/* ------------------------------------------------------ the block stages */
 
-static inline void
-sin_cos(double x, double *sin_x, double *cos_x)
-{
-    static const double P1 = 0x1.921fb54400000p+0, P2 = 0x1.0b4611a600000p-34,
-                        P3 = 0x1.3198a2e037073p-69, TWO_OVER_PI = 0x1.45f306dc9c883p-1,
-                        ROUND = 0x1.8p52;
-    double t = x * TWO_OVER_PI + ROUND;
-    double k = t - ROUND;
-    uint64_t bits;
-    memcpy(&bits, &t, sizeof bits);
-    int quadrant = (int)(bits & 3);
-    double r = ((x - k * P1) - k * P2) - k * P3, z = r * r;
-    double sp = -1.0 / 6, cp = -1.0 / 2;
-    sp = -1.0 / 355687428096000.0;               /* -1/17! */
-    sp = 1.0 / 1307674368000.0 + z * sp;         /* 1/15! */
-    sp = -1.0 / 6227020800.0 + z * sp;           /* -1/13! */
-    sp = 1.0 / 39916800.0 + z * sp;              /* 1/11! */
-    sp = -1.0 / 362880.0 + z * sp;               /* -1/9! */
-    sp = 1.0 / 5040.0 + z * sp;                  /* 1/7! */
-    sp = -1.0 / 120.0 + z * sp;                  /* -1/5! */
-    sp = 1.0 / 6.0 + z * sp;                     /* 1/3! */
-    double sr = r - r * z * sp;
-    cp = 1.0 / 6402373705728000.0;               /* 1/18! */
-    cp = -1.0 / 20922789888000.0 + z * cp;       /* -1/16! */
-    cp = 1.0 / 87178291200.0 + z * cp;           /* 1/14! */
-    cp = -1.0 / 479001600.0 + z * cp;            /* -1/12! */
-    cp = 1.0 / 3628800.0 + z * cp;               /* 1/10! */
-    cp = -1.0 / 40320.0 + z * cp;                /* -1/8! */
-    cp = 1.0 / 720.0 + z * cp;                   /* 1/6! */
-    cp = -1.0 / 24.0 + z * cp;                   /* -1/4! */
-    cp = 0.5 + z * cp;                           /* 1/2! */
-    double cr = 1.0 - z * cp;
-    double sv = (quadrant & 1) ? cr : sr, cv = (quadrant & 1) ? sr : cr;
-    *sin_x = (quadrant & 2) ? -sv : sv;
-    *cos_x = ((quadrant + 1) & 2) ? -cv : cv;
-}
+/* What stage 1 leaves per element of a block (structure of arrays). */
+typedef struct {
+    double alpha[HERTZ_BLOCK], rs[HERTZ_BLOCK], ce[HERTZ_BLOCK];
+    double esm[HERTZ_BLOCK], ese[HERTZ_BLOCK], rx[HERTZ_BLOCK], ry[HERTZ_BLOCK];
+    double other[HERTZ_BLOCK];
+} stage1;
 
-/* m in [1, 2) and e with x = m 2^e, for a normal x > 0 (bits only). */
-static inline double
-split_normal(double x, int *e)
-{
-    uint64_t bits;
-    memcpy(&bits, &x, sizeof bits);
-    *e = (int)((bits >> 52) & 0x7FF) - 1023;
-    bits = (bits & 0x000FFFFFFFFFFFFFull) | 0x3FF0000000000000ull;
-    memcpy(&x, &bits, sizeof x);
-    return x;
-}
-
-/* Stage 1 of a block, the common case, branch-free: inputs in range
- * (finite radii within 2^+-300, normal moduli within 2^+-1000, |angle| <=
- * FAST_ANGLE) and a valid contact.  Elements outside it are flagged in
- * `other` and done by the scalar code (curvatures, reduced_modulus), which
- * also names any error. */
+/* Stage 1, the common case: finite radii within 2^+-300 (or inf), moduli
+ * within 2^+-1000, |angle| <= FAST_ANGLE, a valid contact.  The same
+ * formulas as curvatures() and reduced_modulus(); `other` flags the rest. */
 HERTZ_MULTIVERSION static void
-fast_geometry(ptrdiff_t n, const double *const in[HERTZ_NGEOMETRY], double *restrict alpha,
-              double *restrict rho_sum, int *restrict ce, double *restrict es_m,
-              int *restrict es_e, double *restrict rho_x, double *restrict rho_y,
-              int *restrict other)
+fast_geometry(ptrdiff_t n, const double *const in[HERTZ_NGEOMETRY], stage1 *restrict s)
 {
     const double *restrict R1X = in[HERTZ_R1X], *restrict R1Y = in[HERTZ_R1Y];
     const double *restrict R2X = in[HERTZ_R2X], *restrict R2Y = in[HERTZ_R2Y];
     const double *restrict ANGLE = in[HERTZ_ANGLE];
     const double *restrict E1 = in[HERTZ_E1], *restrict NU1 = in[HERTZ_NU1];
     const double *restrict E2 = in[HERTZ_E2], *restrict NU2 = in[HERTZ_NU2];
+    const double lo = 0x1p-300, hi = 0x1p300;
     for (ptrdiff_t i = 0; i < n; ++i) {
-        double r1x = R1X[i], r1y = R1Y[i], r2x = R2X[i], r2y = R2Y[i];
-        double angle = ANGLE[i];
+        double r1x = R1X[i], r1y = R1Y[i], r2x = R2X[i], r2y = R2Y[i], angle = ANGLE[i];
         double e1 = E1[i], nu1 = NU1[i], e2 = E2[i], nu2 = NU2[i];
-        const double lo = 0x1p-300, hi = 0x1p300;
-#define RADIUS_OK(r) ((fabs(r) >= lo && fabs(r) <= hi) || fabs(r) == INFINITY)
-        int ok = RADIUS_OK(r1x) && RADIUS_OK(r1y) && RADIUS_OK(r2x) && RADIUS_OK(r2y)
-                 && fabs(angle) <= FAST_ANGLE && e1 >= 0x1p-1000 && e1 <= 0x1p1000
-                 && e2 >= 0x1p-1000 && e2 <= 0x1p1000 && nu1 > -1.0 && nu1 <= 0.5
-                 && nu2 > -1.0 && nu2 <= 0.5;
-#undef RADIUS_OK
-        /* sanitised inputs where not ok, so that nothing below traps or
-         * takes long; the element is redone by the scalar code */
-        r1x = ok ? r1x : 1.0;
-        r1y = ok ? r1y : 1.0;
-        r2x = ok ? r2x : 1.0;
-        r2y = ok ? r2y : 1.0;
-        angle = ok ? angle : 0.0;
-        e1 = ok ? e1 : 1.0;
-        e2 = ok ? e2 : 1.0;
+        /* bad = 1 where the element leaves the common case (NaN included) */
+        double bad = 0.0, a;
+        a = fabs(r1x);
+        bad = a >= lo ? bad : 1.0;
+        bad = a <= hi ? bad : (a == INFINITY ? bad : 1.0);
+        a = fabs(r1y);
+        bad = a >= lo ? bad : 1.0;
+        bad = a <= hi ? bad : (a == INFINITY ? bad : 1.0);
+        a = fabs(r2x);
+        bad = a >= lo ? bad : 1.0;
+        bad = a <= hi ? bad : (a == INFINITY ? bad : 1.0);
+        a = fabs(r2y);
+        bad = a >= lo ? bad : 1.0;
+        bad = a <= hi ? bad : (a == INFINITY ? bad : 1.0);
+        bad = fabs(angle) <= FAST_ANGLE ? bad : 1.0;
+        bad = e1 >= 0x1p-1000 ? (e1 <= 0x1p1000 ? bad : 1.0) : 1.0;
+        bad = e2 >= 0x1p-1000 ? (e2 <= 0x1p1000 ? bad : 1.0) : 1.0;
+        bad = nu1 > -1.0 ? (nu1 <= 0.5 ? bad : 1.0) : 1.0;
+        bad = nu2 > -1.0 ? (nu2 <= 0.5 ? bad : 1.0) : 1.0;
+        /* harmless stand-ins where bad (the element is redone by the scalar code) */
+        r1x = bad == 0.0 ? r1x : 1.0;
+        r1y = bad == 0.0 ? r1y : 1.0;
+        r2x = bad == 0.0 ? r2x : 1.0;
+        r2y = bad == 0.0 ? r2y : 1.0;
+        angle = bad == 0.0 ? angle : 0.0;
+        e1 = bad == 0.0 ? e1 : 1.0;
+        e2 = bad == 0.0 ? e2 : 1.0;
+        nu1 = bad == 0.0 ? nu1 : 0.0;
+        nu2 = bad == 0.0 ? nu2 : 0.0;
         double px = r1x * r2x, py = r1y * r2y, q1 = r1x * r1y, q2 = r2x * r2y;
         double k1x = 1.0 / r1x, k1y = 1.0 / r1y, k2x = 1.0 / r2x, k2y = 1.0 / r2y;
-        double sx = (px < 0.0 && px > -INFINITY) ? (r1x + r2x) / px : k1x + k2x;
-        double sy = (py < 0.0 && py > -INFINITY) ? (r1y + r2y) / py : k1y + k2y;
-        double g1 = (q1 > 0.0 && q1 < INFINITY) ? (r1y - r1x) / q1 : k1x - k1y;
-        double g2 = (q2 > 0.0 && q2 < INFINITY) ? (r2y - r2x) / q2 : k2x - k2y;
+        double sx = px < 0.0 ? (px > -INFINITY ? (r1x + r2x) / px : k1x + k2x) : k1x + k2x;
+        double sy = py < 0.0 ? (py > -INFINITY ? (r1y + r2y) / py : k1y + k2y) : k1y + k2y;
+        double g1 = q1 > 0.0 ? (q1 < INFINITY ? (r1y - r1x) / q1 : k1x - k1y) : k1x - k1y;
+        double g2 = q2 > 0.0 ? (q2 < INFINITY ? (r2y - r2x) / q2 : k2x - k2y) : k2x - k2y;
         double big = fabs(sx) > fabs(sy) ? fabs(sx) : fabs(sy);
         big = fabs(g1) > big ? fabs(g1) : big;
         big = fabs(g2) > big ? fabs(g2) : big;
-        ok = ok && big > 0.0;
-        int t;
-        split_normal(ok ? big : 1.0, &t);
-        double f = pow2i(-t);
+        bad = big > 0.0 ? bad : 1.0;
+        double t;
+        split_normal(big > 0.0 ? big : 1.0, &t);
+        double f = pow2(-t);
         sx *= f;
         sy *= f;
         g1 *= f;
@@ -353,251 +457,293 @@ fast_geometry(ptrdiff_t n, const double *const in[HERTZ_NGEOMETRY], double *rest
         double rx = 0.5 * (trace + d);
         double ry = d <= 0.5 * trace ? 0.5 * (trace - d) : det / rx;
         ry = ry < rx ? ry : rx;
-        int aligned = sn == 0.0;
-        double rx0 = sx > sy ? sx : sy, ry0 = sx > sy ? sy : sx;
-        rx = aligned ? rx0 : rx;
-        ry = aligned ? ry0 : ry;
-        ok = ok && rx > 0.0 && ry >= DBL_MIN && (aligned || det >= DBL_MIN)
-             && rx / ry <= DBL_MAX;
-        other[i] = !ok;
-        alpha[i] = ok ? rx / ry : 1.0;
-        rho_sum[i] = ok ? sx + sy : 1.0;
-        ce[i] = t;
-        rho_x[i] = rx * pow2i(t);
-        rho_y[i] = ry * pow2i(t);
-        /* E* as in reduced_modulus, normal moduli only */
+        rx = sn == 0.0 ? (sx > sy ? sx : sy) : rx; /* aligned principal planes */
+        ry = sn == 0.0 ? (sx > sy ? sy : sx) : ry;
+        bad = rx > 0.0 ? bad : 1.0;
+        bad = ry >= DBL_MIN ? bad : 1.0;
+        bad = sn == 0.0 ? bad : (det >= DBL_MIN ? bad : 1.0);
+        bad = rx / ry <= DBL_MAX ? bad : 1.0;
+        s->other[i] = bad;
+        s->alpha[i] = bad == 0.0 ? rx / ry : 1.0;
+        s->rs[i] = bad == 0.0 ? sx + sy : 1.0;
+        s->ce[i] = t;
+        s->rx[i] = rx * pow2(t);
+        s->ry[i] = ry * pow2(t);
+        /* E* as in reduced_modulus */
         double c1 = (1.0 - nu1) * (1.0 + nu1), c2 = (1.0 - nu2) * (1.0 + nu2);
-        int swap = e1 > e2 || (e1 == e2 && c1 > c2);
-        double elo = swap ? e2 : e1, ehi = swap ? e1 : e2;
-        double clo = swap ? c2 : c1, chi = swap ? c1 : c2;
-        int ee;
-        double em = split_normal(elo, &ee);
-        es_m[i] = em / (clo + chi * (elo / ehi));
-        es_e[i] = ee;
+        double swap = e1 > e2 ? 1.0 : (e1 == e2 ? (c1 > c2 ? 1.0 : 0.0) : 0.0);
+        double elo = swap != 0.0 ? e2 : e1, ehi = swap != 0.0 ? e1 : e2;
+        double clo = swap != 0.0 ? c2 : c1, chi = swap != 0.0 ? c1 : c2;
+        double ee, em = split_normal(elo, &ee);
+        s->esm[i] = em / (clo + chi * (elo / ehi));
+        s->ese[i] = ee;
     }
+}
+
+/* Stage 1 for a block, with the scalar code for the flagged elements (and
+ * for the major-axis angle when asked).  HERTZ_OK, or an error code with
+ * *bad the element and its curvatures in *rho_x, *rho_y. */
+static int
+geometry_stage(ptrdiff_t n, const double *const in[HERTZ_NGEOMETRY], stage1 *s,
+               double *theta, ptrdiff_t *bad, double *rho_x, double *rho_y)
+{
+    fast_geometry(n, in, s);
+    for (ptrdiff_t i = 0; i < n; ++i) {
+        if (theta) {
+            theta[i] = 0.0;
+        }
+        if (s->other[i] == 0.0 && !theta) {
+            continue;
+        }
+        double r[4] = {in[HERTZ_R1X][i], in[HERTZ_R1Y][i], in[HERTZ_R2X][i], in[HERTZ_R2Y][i]};
+        double rx = 0.0, ry = 0.0, rs = 1.0, e = 0.0, th = 0.0;
+        int code = curvatures(r, in[HERTZ_ANGLE][i], &rx, &ry, &rs, &e, &th, theta != NULL);
+        if (theta) {
+            theta[i] = th;
+        }
+        if (s->other[i] == 0.0) {
+            continue;
+        }
+        hertz_scaled es = {1.0, 0.0};
+        if (code == HERTZ_OK) {
+            code = reduced_modulus(in[HERTZ_E1][i], in[HERTZ_NU1][i], in[HERTZ_E2][i],
+                                   in[HERTZ_NU2][i], &es);
+        }
+        s->rx[i] = scale2(rx, e);
+        s->ry[i] = scale2(ry, e);
+        if (code != HERTZ_OK) {
+            *bad = i;
+            *rho_x = s->rx[i];
+            *rho_y = s->ry[i];
+            return code;
+        }
+        s->alpha[i] = rx / ry;
+        s->rs[i] = rs;
+        s->ce[i] = e;
+        s->esm[i] = es.m;
+        s->ese[i] = es.e;
+    }
+    return HERTZ_OK;
+}
+
+/* Coefficients per element (stage 3): c = {lam, cb.m, cb.e, cd.m, cd.e,
+ * cp.m, cp.e, cs.m, cs.e}, each an array of n. */
+HERTZ_MULTIVERSION static void
+coefficients_loop(ptrdiff_t n, const double *restrict rs, const double *restrict ce,
+                  const double *restrict es_m, const double *restrict es_e,
+                  const double *restrict lam, const double *restrict K,
+                  const double *restrict E, double *restrict cl, double *restrict cbm,
+                  double *restrict cbe, double *restrict cdm, double *restrict cde,
+                  double *restrict cpm, double *restrict cpe, double *restrict csm,
+                  double *restrict cse)
+{
+    for (ptrdiff_t i = 0; i < n; ++i) {
+        double er, rho_m = split_normal(rs[i], &er);
+        er += ce[i];
+        double half_e = 0.5 / E[i], esm = es_m[i], ese = es_e[i];
+        cl[i] = lam[i];
+        cbm[i] = 3.0 * E[i] / (PI * lam[i] * esm * rho_m);
+        cbe[i] = -(ese + er);
+        cdm[i] = K[i] * rho_m * half_e;
+        cde[i] = er;
+        cpm[i] = esm * rho_m * half_e;
+        cpe[i] = ese + er;
+        csm[i] = PI * lam[i] * esm / K[i];
+        cse[i] = ese;
+    }
+}
+
+static void
+coefficients_stage(ptrdiff_t n, const stage1 *s, const double *lam, const double *K,
+                   const double *E, double *const c[HERTZ_NCOEFFICIENTS])
+{
+    coefficients_loop(n, s->rs, s->ce, s->esm, s->ese, lam, K, E, c[0], c[1], c[2], c[3], c[4],
+                      c[5], c[6], c[7], c[8]);
+}
+
+/* Stage 4: the load-dependent outputs from the value v = vm 2^ve (vm in
+ * [1, 2)); out = {a, b, load, p0, delta, stiffness}.  One loop per mode. */
+#define GIVEN_PARAMETERS                                                                \
+    ptrdiff_t n, const double *restrict cl, const double *restrict cbm,                 \
+        const double *restrict cbe, const double *restrict cdm, const double *restrict cde, \
+        const double *restrict cpm, const double *restrict cpe, const double *restrict csm, \
+        const double *restrict cse, const double *restrict vm, const double *restrict ve,   \
+        const double *restrict v, double *restrict oa, double *restrict ob,                 \
+        double *restrict oload, double *restrict op0, double *restrict odelta,             \
+        double *restrict ostiff
+
+HERTZ_MULTIVERSION static void
+given_load(GIVEN_PARAMETERS)
+{
+    for (ptrdiff_t i = 0; i < n; ++i) {
+        /* b^3 = cb P = (xh + xl) 2^(3q): cube root, one Newton step in double-double */
+        double xl, xh = two_prod(cbm[i], vm[i], &xl);
+        double xe, xm = split_normal(xh, &xe);
+        xl *= xm / xh; /* a power of two: exact */
+        double e = cbe[i] + ve[i] + xe;
+        double q = (e * (1.0 / 3.0) + ROUND) - ROUND, j = e - 3.0 * q;
+        q = j < 0.0 ? q - 1.0 : q;
+        j = j < 0.0 ? j + 3.0 : j; /* e = 3q + j, j in {0, 1, 2} */
+        double f = j >= 2.0 ? 4.0 : (j >= 1.0 ? 2.0 : 1.0);
+        xh = xm * f;
+        xl *= f;
+        double bh = cube_root(xm, j);
+        double sl, sh = two_prod(bh, bh, &sl), cl3, ch = dd_mul(sh, sl, bh, 0.0, &cl3);
+        double bl = ((xh - ch) - cl3 + xl) / (3.0 * sh);
+        double b2l, b2h = dd_mul(bh, bl, bh, bl, &b2l);
+        oa[i] = scale2(dd_scale(cl[i], bh, bl), q);
+        ob[i] = scale2(bh + bl, q);
+        oload[i] = v[i];
+        op0[i] = scale2(dd_scale(cpm[i], bh, bl), cpe[i] + q);
+        odelta[i] = scale2(dd_scale(cdm[i], b2h, b2l), cde[i] + 2.0 * q);
+        ostiff[i] = scale2(dd_scale(csm[i], bh, bl), cse[i] + q);
+    }
+}
+
+HERTZ_MULTIVERSION static void
+given_approach(GIVEN_PARAMETERS)
+{
+    for (ptrdiff_t i = 0; i < n; ++i) {
+        /* b^2 = t = delta / cd = (th + tl) 2^(2q); P = t b / cb */
+        double th = vm[i] / cdm[i], pe, pp = two_prod(th, cdm[i], &pe);
+        double tl = ((vm[i] - pp) - pe) / cdm[i];
+        double e = ve[i] - cde[i];
+        double q = (e * 0.5 + ROUND) - ROUND, j = e - 2.0 * q;
+        q = j < 0.0 ? q - 1.0 : q;
+        j = j < 0.0 ? j + 2.0 : j; /* e = 2q + j, j in {0, 1} */
+        double f = j >= 1.0 ? 2.0 : 1.0;
+        th *= f;
+        tl *= f;
+        double bh = sqrt(th);
+        double sl, sh = two_prod(bh, bh, &sl);
+        double bl = ((th - sh) - sl + tl) / (2.0 * bh);
+        double ll, lh = dd_mul(th, tl, bh, bl, &ll);
+        oa[i] = scale2(dd_scale(cl[i], bh, bl), q);
+        ob[i] = scale2(bh + bl, q);
+        oload[i] = scale2(dd_div(lh, ll, cbm[i]), 3.0 * q - cbe[i]);
+        op0[i] = scale2(dd_scale(cpm[i], bh, bl), cpe[i] + q);
+        odelta[i] = v[i];
+        ostiff[i] = scale2(dd_scale(csm[i], bh, bl), cse[i] + q);
+    }
+}
+
+HERTZ_MULTIVERSION static void
+given_p0(GIVEN_PARAMETERS)
+{
+    for (ptrdiff_t i = 0; i < n; ++i) {
+        /* b = p0 / cp; P = b^3 / cb */
+        double bh = vm[i] / cpm[i], pe, pp = two_prod(bh, cpm[i], &pe);
+        double bl = ((vm[i] - pp) - pe) / cpm[i];
+        double q = ve[i] - cpe[i];
+        double b2l, b2h = dd_mul(bh, bl, bh, bl, &b2l);
+        double ll, lh = dd_mul(b2h, b2l, bh, bl, &ll);
+        oa[i] = scale2(dd_scale(cl[i], bh, bl), q);
+        ob[i] = scale2(bh + bl, q);
+        oload[i] = scale2(dd_div(lh, ll, cbm[i]), 3.0 * q - cbe[i]);
+        op0[i] = v[i];
+        odelta[i] = scale2(dd_scale(cdm[i], b2h, b2l), cde[i] + 2.0 * q);
+        ostiff[i] = scale2(dd_scale(csm[i], bh, bl), cse[i] + q);
+    }
+}
+
+/* ---------------------------------------------------------- entry points */
+
+int
+hertz_given_block(ptrdiff_t n, int mode, const double *const c[HERTZ_NCOEFFICIENTS],
+                  const double *value, double *const out[HERTZ_NGIVEN], ptrdiff_t *bad)
+{
+    double vm[HERTZ_BLOCK], ve[HERTZ_BLOCK];
+    for (ptrdiff_t i = 0; i < n; ++i) {
+        double v = value[i] >= DBL_MIN ? (value[i] <= DBL_MAX ? value[i] : 1.0) : 1.0;
+        vm[i] = split_normal(v, &ve[i]);
+    }
+    for (ptrdiff_t i = 0; i < n; ++i) {
+        double v = value[i];
+        if (!(v >= DBL_MIN && v <= DBL_MAX)) {
+            if (!(v >= 0.0 && v <= DBL_MAX)) {
+                *bad = i;
+                return HERTZ_BAD_VALUE;
+            }
+            hertz_scaled s = split(v > 0.0 ? v : 1.0); /* subnormal; zero is set below */
+            vm[i] = s.m;
+            ve[i] = s.e;
+        }
+    }
+#define GIVEN_ARGUMENTS n, c[0], c[1], c[2], c[3], c[4], c[5], c[6], c[7], c[8], vm, ve, value, \
+                        out[0], out[1], out[2], out[3], out[4], out[5]
+    if (mode == HERTZ_GIVEN_LOAD) {
+        given_load(GIVEN_ARGUMENTS);
+    }
+    else if (mode == HERTZ_GIVEN_APPROACH) {
+        given_approach(GIVEN_ARGUMENTS);
+    }
+    else {
+        given_p0(GIVEN_ARGUMENTS);
+    }
+#undef GIVEN_ARGUMENTS
+    for (ptrdiff_t i = 0; i < n; ++i) {
+        if (value[i] == 0.0) {
+            for (int k = 0; k < HERTZ_NGIVEN; ++k) {
+                out[k][i] = 0.0;
+            }
+        }
+    }
+    return HERTZ_OK;
+}
+
+/* Stages 1-3 into the coefficient arrays c and, when g is given, the
+ * geometry fields. */
+static int
+geometry_and_coefficients(ptrdiff_t n, const double *const in[HERTZ_NGEOMETRY],
+                          double *const c[HERTZ_NCOEFFICIENTS], double *const g,
+                          int with_theta, ptrdiff_t *bad, double *rho_x, double *rho_y)
+{
+    stage1 s;
+    double lam[HERTZ_BLOCK], m[HERTZ_BLOCK], K[HERTZ_BLOCK], E[HERTZ_BLOCK];
+    double theta[HERTZ_BLOCK];
+    int code = geometry_stage(n, in, &s, with_theta ? theta : NULL, bad, rho_x, rho_y);
+    if (code != HERTZ_OK) {
+        return code;
+    }
+    hertz_ellipse_block(s.alpha, n, 1, lam, m, K, E);
+    coefficients_stage(n, &s, lam, K, E, c);
+    if (g) {
+        /* g[k * n + i]: lambda, alpha, m, K, E, e_star, rho_x, rho_y, theta */
+        for (ptrdiff_t i = 0; i < n; ++i) {
+            double row[HERTZ_NFIELDS] = {lam[i], s.alpha[i], m[i], K[i], E[i],
+                                         scale2(s.esm[i], s.ese[i]), s.rx[i], s.ry[i],
+                                         with_theta ? theta[i] : 0.0};
+            for (int k = 0; k < HERTZ_NFIELDS; ++k) {
+                g[k * n + i] = row[k];
+            }
+        }
+    }
+    return HERTZ_OK;
 }
 
 int
 hertz_geometry_block(ptrdiff_t n, const double *const in[HERTZ_NGEOMETRY],
-                     hertz_geometry *g, ptrdiff_t *bad, int with_theta)
+                     double *const c[HERTZ_NCOEFFICIENTS], double *fields, ptrdiff_t *bad,
+                     double *rho_x, double *rho_y)
 {
-    double alpha[HERTZ_BLOCK] = {0.0}, lam[HERTZ_BLOCK], m[HERTZ_BLOCK], K[HERTZ_BLOCK],
-        E[HERTZ_BLOCK], rs[HERTZ_BLOCK], esm[HERTZ_BLOCK], rx[HERTZ_BLOCK], ry[HERTZ_BLOCK];
-    int ce[HERTZ_BLOCK], ese[HERTZ_BLOCK];
-    int other[HERTZ_BLOCK];
-    fast_geometry(n, in, alpha, rs, ce, esm, ese, rx, ry, other);
-    for (ptrdiff_t i = 0; i < n; ++i) {
-        g[i].theta = 0.0;
-        g[i].rho_x = rx[i];
-        g[i].rho_y = ry[i];
-        if (!other[i] && !with_theta) {
-            continue;
-        }
-        double r[4] = {in[HERTZ_R1X][i], in[HERTZ_R1Y][i], in[HERTZ_R2X][i], in[HERTZ_R2Y][i]};
-        double rxi = 0.0, ryi = 0.0, rsi, theta = 0.0;
-        int cei;
-        hertz_scaled esi;
-        int code = curvatures(r, in[HERTZ_ANGLE][i], &rxi, &ryi, &rsi, &cei, &theta,
-                              with_theta);
-        if (!other[i]) { /* only the angle was missing */
-            g[i].theta = theta;
-            continue;
-        }
-        if (code == HERTZ_OK) {
-            code = reduced_modulus(in[HERTZ_E1][i], in[HERTZ_NU1][i], in[HERTZ_E2][i],
-                                   in[HERTZ_NU2][i], &esi);
-        }
-        g[i].rho_x = scale2(rxi, cei);
-        g[i].rho_y = scale2(ryi, cei);
-        if (code != HERTZ_OK) {
-            *bad = i;
-            return code;
-        }
-        alpha[i] = rxi / ryi;
-        rs[i] = rsi;
-        ce[i] = cei;
-        esm[i] = esi.m;
-        ese[i] = esi.e;
-        g[i].theta = theta;
-    }
-    hertz_ellipse_block(alpha, n, 1, lam, m, K, E);
-    for (ptrdiff_t i = 0; i < n; ++i) {
-        int er;
-        double rho_m = split_normal(rs[i], &er);
-        er += ce[i];
-        double half_e = 0.5 / E[i];
-        g[i].e_star = scale2(esm[i], ese[i]);
-        g[i].alpha = alpha[i];
-        g[i].lam = lam[i];
-        g[i].m = m[i];
-        g[i].K = K[i];
-        g[i].E = E[i];
-        g[i].cb.m = 3.0 * E[i] / (PI * lam[i] * esm[i] * rho_m);
-        g[i].cb.e = -(ese[i] + er);
-        g[i].cd.m = K[i] * rho_m * half_e;
-        g[i].cd.e = er;
-        g[i].cp.m = esm[i] * rho_m * half_e;
-        g[i].cp.e = ese[i] + er;
-        g[i].cs.m = PI * lam[i] * esm[i] / K[i];
-        g[i].cs.e = ese[i];
-    }
-    return HERTZ_OK;
-}
-
-/* Double-double helpers (Dekker 1971, no fused multiply-add needed): the
- * load-dependent outputs are c b^k rounded once, with b carried as hi + lo,
- * so that scaling the load, or going from load to approach or p0 and back,
- * moves them by a unit in the last place or two, not by the sum of the
- * roundings of every step. */
-static inline void
-veltkamp(double a, double *hi, double *lo)
-{
-    double t = 134217729.0 * a; /* 2^27 + 1 */
-    *hi = t - (t - a);
-    *lo = a - *hi;
-}
-
-/* a b = p + *err exactly. */
-static inline double
-two_prod(double a, double b, double *err)
-{
-    double p = a * b, ah, al, bh, bl;
-    veltkamp(a, &ah, &al);
-    veltkamp(b, &bh, &bl);
-    *err = ((ah * bh - p) + ah * bl + al * bh) + al * bl;
-    return p;
-}
-
-/* (h + l) (x + y) as a double-double. */
-static inline double
-dd_mul(double h, double l, double x, double y, double *lo)
-{
-    double e, p = two_prod(h, x, &e);
-    e += h * y + l * x;
-    double s = p + e;
-    *lo = e - (s - p);
-    return s;
-}
-
-/* (h + l) / c, rounded once. */
-static inline double
-dd_div(double h, double l, double c)
-{
-    double q = h / c, e, p = two_prod(q, c, &e);
-    return q + (((h - p) - e) + l) / c;
-}
-
-/* c (h + l), rounded once. */
-static inline double
-dd_scale(double c, double h, double l)
-{
-    double e, p = two_prod(c, h, &e);
-    return p + (e + c * l);
-}
-
-/* x^(1/3) for 1 <= x < 8 to about 1e-10 (a degree-4 least-squares
- * polynomial for [1, 2], times 2^(j/3), then one Newton step); the caller's
- * double-double Newton step completes it. */
-static inline double
-cube_root(double x)
-{
-    static const double C[5] = {1.1447129219983228, 0.2542825412449247, -0.05643544389416345,
-                                0.02247174566566939, -0.010274592492448192};
-    static const double ROOT2[3] = {1.0, 1.2599210498948732, 1.5874010519681994};
-    int j = (x >= 2.0) + (x >= 4.0);
-    double m = x / (j == 0 ? 1.0 : (j == 1 ? 2.0 : 4.0)), t = m - 1.5;
-    double y = (C[0] + t * (C[1] + t * (C[2] + t * (C[3] + t * C[4])))) * ROOT2[j];
-    return y - (y * y * y - x) / (3.0 * y * y);
-}
-
-static inline int
-floor_div(int e, int k)
-{
-    return e >= 0 ? e / k : -((k - 1 - e) / k);
+    return geometry_and_coefficients(n, in, c, fields, fields != NULL, bad, rho_x, rho_y);
 }
 
 int
-hertz_contact_given(const hertz_geometry *g, int mode, double value,
-                    double out[HERTZ_NGIVEN])
+hertz_contact_block(ptrdiff_t n, const double *const in[HERTZ_NGEOMETRY + 1], int mode,
+                    double *const out[HERTZ_NGIVEN], ptrdiff_t *bad, double *rho_x,
+                    double *rho_y)
 {
-    if (!(value >= 0.0 && value <= DBL_MAX)) {
-        return HERTZ_BAD_VALUE;
+    double cbuf[HERTZ_NCOEFFICIENTS][HERTZ_BLOCK];
+    double *c[HERTZ_NCOEFFICIENTS];
+    for (int k = 0; k < HERTZ_NCOEFFICIENTS; ++k) {
+        c[k] = cbuf[k];
     }
-    if (value == 0.0) {
-        for (int k = 0; k < 6; ++k) {
-            out[k] = 0.0;
-        }
-        return HERTZ_OK;
+    int code = geometry_and_coefficients(n, in, c, NULL, 0, bad, rho_x, rho_y);
+    if (code != HERTZ_OK) {
+        return code;
     }
-    hertz_scaled v = split(value);
-    double bh, bl, b2h, b2l, load;
-    int e, q;
-    if (mode == HERTZ_GIVEN_LOAD) {
-        /* b^3 = cb P = (xh + xl) 2^(3q): cube root, one Newton step in double-double */
-        double xl, xh = two_prod(g->cb.m, v.m, &xl);
-        int xe;
-        double xm = split_normal(xh, &xe);
-        xl *= xm / xh; /* a power of two: exact */
-        e = g->cb.e + v.e + xe;
-        q = floor_div(e, 3);
-        double f = (double)(1 << (e - 3 * q));
-        xh = xm * f;
-        xl *= f;
-        bh = cube_root(xh);
-        double sl, sh = two_prod(bh, bh, &sl), cl, ch = dd_mul(sh, sl, bh, 0.0, &cl);
-        bl = ((xh - ch) - cl + xl) / (3.0 * sh);
-        load = value;
-    }
-    else if (mode == HERTZ_GIVEN_APPROACH) {
-        /* b^2 = t = delta / cd = (th + tl) 2^(2q); P = t b / cb */
-        double th = v.m / g->cd.m, pe, pp = two_prod(th, g->cd.m, &pe);
-        double tl = ((v.m - pp) - pe) / g->cd.m;
-        e = v.e - g->cd.e;
-        q = floor_div(e, 2);
-        double f = (double)(1 << (e - 2 * q));
-        th *= f;
-        tl *= f;
-        bh = sqrt(th);
-        double sl, sh = two_prod(bh, bh, &sl);
-        bl = ((th - sh) - sl + tl) / (2.0 * bh);
-        double ll, lh = dd_mul(th, tl, bh, bl, &ll);
-        load = scale2(dd_div(lh, ll, g->cb.m), 3 * q - g->cb.e);
-    }
-    else {
-        /* b = p0 / cp; P = b^3 / cb */
-        bh = v.m / g->cp.m;
-        double pe, pp = two_prod(bh, g->cp.m, &pe);
-        bl = ((v.m - pp) - pe) / g->cp.m;
-        q = v.e - g->cp.e;
-        load = 0.0; /* below */
-    }
-    b2h = dd_mul(bh, bl, bh, bl, &b2l);
-    if (mode == HERTZ_GIVEN_P0) {
-        double ll, lh = dd_mul(b2h, b2l, bh, bl, &ll);
-        load = scale2(dd_div(lh, ll, g->cb.m), 3 * q - g->cb.e);
-    }
-    out[0] = scale2(dd_scale(g->lam, bh, bl), q);
-    out[1] = scale2(bh + bl, q);
-    out[2] = load;
-    out[3] = mode == HERTZ_GIVEN_P0 ? value : scale2(dd_scale(g->cp.m, bh, bl), g->cp.e + q);
-    out[4] = mode == HERTZ_GIVEN_APPROACH ? value
-                                          : scale2(dd_scale(g->cd.m, b2h, b2l), g->cd.e + 2 * q);
-    out[5] = scale2(dd_scale(g->cs.m, bh, bl), g->cs.e + q);
-    return HERTZ_OK;
-}
-
-void
-hertz_geometry_fields(const hertz_geometry *g, double out[HERTZ_NOUT - HERTZ_NGIVEN])
-{
-    out[0] = g->lam;
-    out[1] = g->alpha;
-    out[2] = g->m;
-    out[3] = g->K;
-    out[4] = g->E;
-    out[5] = g->e_star;
-    out[6] = g->rho_x;
-    out[7] = g->rho_y;
-    out[8] = g->theta;
+    return hertz_given_block(n, mode, (const double *const *)c, in[HERTZ_NGEOMETRY], out, bad);
 }
 
 /* Line contact (Johnson sec. 4.3): half_width^2 = 4 P' / (pi E* rho),
@@ -606,8 +752,7 @@ int
 hertz_line_contact(const double in[8], double load, double out[5], double *rho_x,
                    double *rho_y)
 {
-    double rx = 0.0, ry = 0.0, rs, theta;
-    int e;
+    double rx = 0.0, ry = 0.0, rs, theta, e = 0.0;
     int code = curvatures(in, 0.0, &rx, &ry, &rs, &e, &theta, 0);
     *rho_x = scale2(rx, e);
     *rho_y = scale2(ry, e);
@@ -618,10 +763,9 @@ hertz_line_contact(const double in[8], double load, double out[5], double *rho_x
              || code == HERTZ_LIMIT) {
         code = HERTZ_NOT_LINE;
     }
-    hertz_scaled es;
+    hertz_scaled es = {1.0, 0.0};
     if (code == HERTZ_OK) {
         code = reduced_modulus(in[4], in[5], in[6], in[7], &es);
-        /* reduced_modulus numbers its errors for the point contact's inputs */
     }
     if (code != HERTZ_OK) {
         return code;
@@ -641,9 +785,9 @@ hertz_line_contact(const double in[8], double load, double out[5], double *rho_x
     hertz_scaled p = split(load);
     /* w^2 = 4 P / (pi E* rho) and p0^2 = P E* rho / pi, square roots of m 2^e */
     double wm = 4.0 * p.m / (PI * es.m * rho.m), pm = p.m * es.m * rho.m / PI;
-    int we = p.e - es.e - rho.e, pe = p.e + es.e + rho.e;
-    int wq = we >= 0 ? we / 2 : -((1 - we) / 2), pq = pe >= 0 ? pe / 2 : -((1 - pe) / 2);
-    out[0] = scale2(sqrt(wm * (double)(1 << (we - 2 * wq))), wq);
-    out[1] = scale2(sqrt(pm * (double)(1 << (pe - 2 * pq))), pq);
+    double we = p.e - es.e - rho.e, pe = p.e + es.e + rho.e;
+    double wq = floor(we * 0.5), pq = floor(pe * 0.5);
+    out[0] = scale2(sqrt(wm * (we - 2.0 * wq >= 1.0 ? 2.0 : 1.0)), wq);
+    out[1] = scale2(sqrt(pm * (pe - 2.0 * pq >= 1.0 ? 2.0 : 1.0)), pq);
     return HERTZ_OK;
 }

@@ -30,45 +30,47 @@ enum {
     HERTZ_NOT_LINE                        /* line_contact of bodies without a line contact */
 };
 
-/* m * 2^e, so that products and quotients of extreme magnitudes never
- * overflow or underflow before the final result. */
+/* m * 2^e (e an integer held in a double), so that products and quotients of
+ * extreme magnitudes never overflow or underflow before the final result. */
 typedef struct {
-    double m;
-    int e;
+    double m, e;
 } hertz_scaled;
 
-/* What depends on the geometry and the moduli only.  With b the semi-minor
- * axis: b^3 = cb P, delta = cd b^2, p0 = cp b, stiffness = cs b, a = lam b. */
-typedef struct {
-    double lam, alpha, m, K, E, e_star, rho_x, rho_y, theta;
-    hertz_scaled cb, cd, cp, cs;
-} hertz_geometry;
-
 /* Point-contact outputs, in this order: the load-dependent ones
- * (HERTZ_NGIVEN of them), then those of the geometry alone. */
+ * (HERTZ_NGIVEN of them), then those of the geometry alone (HERTZ_NFIELDS). */
 enum {
     HERTZ_OUT_A, HERTZ_OUT_B, HERTZ_OUT_LOAD, HERTZ_OUT_P0, HERTZ_OUT_DELTA,
     HERTZ_OUT_STIFFNESS, HERTZ_NGIVEN,
     HERTZ_OUT_LAMBDA = HERTZ_NGIVEN, HERTZ_OUT_ALPHA, HERTZ_OUT_M, HERTZ_OUT_K, HERTZ_OUT_E,
     HERTZ_OUT_ESTAR, HERTZ_OUT_RHOX, HERTZ_OUT_RHOY, HERTZ_OUT_THETA, HERTZ_NOUT
 };
+#define HERTZ_NFIELDS (HERTZ_NOUT - HERTZ_NGIVEN)
 
-/* n <= HERTZ_BLOCK elements, in[k][i] geometry input k of element i.  Returns
- * HERTZ_OK, or an error code with *bad the first bad element (whose rho_x and
- * rho_y are then set where the error concerns them).  With with_theta = 0
- * the major-axis angle is not computed (left 0). */
+/* What the load-dependent outputs need of a geometry, with b the semi-minor
+ * axis: lambda = a/b and b^3 = cb P, delta = cd b^2, p0 = cp b,
+ * stiffness = cs b, each coefficient as (m, e) with value m 2^e:
+ * c = {lambda, cb.m, cb.e, cd.m, cd.e, cp.m, cp.e, cs.m, cs.e}. */
+#define HERTZ_NCOEFFICIENTS 9
+
+/* n <= HERTZ_BLOCK elements, in[k][i] geometry input k of element i: the
+ * coefficients into the arrays c[k] and, unless fields is NULL, the nine
+ * geometry fields (lambda, alpha, m, K, E, e_star, rho_x, rho_y, theta) into
+ * fields[k * n + i].  HERTZ_OK, or an error code with *bad the first bad
+ * element and its relative curvatures in *rho_x, *rho_y. */
 int hertz_geometry_block(ptrdiff_t n, const double *const in[HERTZ_NGEOMETRY],
-                         hertz_geometry *g, ptrdiff_t *bad, int with_theta);
+                         double *const c[HERTZ_NCOEFFICIENTS], double *fields, ptrdiff_t *bad,
+                         double *rho_x, double *rho_y);
 
-/* The load-dependent outputs for a given load, approach or peak pressure
- * (mode): out = {a, b, load, p0, delta, stiffness}.  HERTZ_OK or
- * HERTZ_BAD_VALUE. */
-int hertz_contact_given(const hertz_geometry *g, int mode, double value,
-                        double out[HERTZ_NGIVEN]);
+/* The load-dependent outputs {a, b, load, p0, delta, stiffness} of n <=
+ * HERTZ_BLOCK elements from their coefficients and the given values (load,
+ * approach or p0 by mode).  HERTZ_OK or HERTZ_BAD_VALUE with *bad. */
+int hertz_given_block(ptrdiff_t n, int mode, const double *const c[HERTZ_NCOEFFICIENTS],
+                      const double *value, double *const out[HERTZ_NGIVEN], ptrdiff_t *bad);
 
-/* The geometry's own outputs: lambda, alpha, m, K, E, e_star, rho_x, rho_y,
- * theta. */
-void hertz_geometry_fields(const hertz_geometry *g, double out[HERTZ_NOUT - HERTZ_NGIVEN]);
+/* Both: in[HERTZ_NGEOMETRY] holds the given values. */
+int hertz_contact_block(ptrdiff_t n, const double *const in[HERTZ_NGEOMETRY + 1], int mode,
+                        double *const out[HERTZ_NGIVEN], ptrdiff_t *bad, double *rho_x,
+                        double *rho_y);
 
 /* Line contact (2-D, plane strain): in = {r1x, r1y, r2x, r2y, E1, nu1, E2,
  * nu2}, the line along y.  out = {half_width, p0, e_star, rho, load}.

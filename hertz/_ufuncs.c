@@ -17,6 +17,7 @@
 #define PY_SSIZE_T_CLEAN
 #include <Python.h>
 #include <structmember.h>
+#include <string.h>
 
 #define NPY_NO_DEPRECATED_API NPY_2_0_API_VERSION
 #define NPY_TARGET_VERSION NPY_2_0_API_VERSION
@@ -178,13 +179,13 @@ ellipse_block(ptrdiff_t n, const double *const *in, double *const *out, int iter
 
 static int
 geometry_error(int code, ptrdiff_t bad, const double *const *in, double value, int what,
-               const hertz_geometry *g)
+               double rho_x, double rho_y)
 {
     double row[HERTZ_NGEOMETRY];
     for (int k = 0; k < HERTZ_NGEOMETRY; ++k) {
         row[k] = in[k][bad];
     }
-    set_error_nogil(code, row, value, what, g->rho_x, g->rho_y);
+    set_error_nogil(code, row, value, what, rho_x, rho_y);
     return -1;
 }
 
@@ -192,83 +193,77 @@ geometry_error(int code, ptrdiff_t bad, const double *const *in, double value, i
 static int
 contact_block(ptrdiff_t n, const double *const *in, double *const *out, int mode)
 {
-    hertz_geometry g[HERTZ_BLOCK];
     ptrdiff_t bad = 0;
-    int code = hertz_geometry_block(n, in, g, &bad, 0);
+    double rho_x = 0.0, rho_y = 0.0;
+    int code = hertz_contact_block(n, in, mode, out, &bad, &rho_x, &rho_y);
     if (code != HERTZ_OK) {
-        return geometry_error(code, bad, in, in[HERTZ_NGEOMETRY][bad], mode, &g[bad]);
-    }
-    for (ptrdiff_t i = 0; i < n; ++i) {
-        double given[HERTZ_NGIVEN];
-        double value = in[HERTZ_NGEOMETRY][i];
-        if (hertz_contact_given(&g[i], mode, value, given) != HERTZ_OK) {
-            return geometry_error(HERTZ_BAD_VALUE, i, in, value, mode, &g[i]);
-        }
-        for (int k = 0; k < HERTZ_NGIVEN; ++k) {
-            out[k][i] = given[k];
-        }
+        return geometry_error(code, bad, in, in[HERTZ_NGEOMETRY][bad], mode, rho_x, rho_y);
     }
     return 0;
 }
 
 /* The fields of the geometry alone: inputs 9 geometry; outputs lambda,
  * alpha, m, K, E, e_star, rho_x, rho_y, theta, and with `coefficients` the
- * coefficients cb, cd, cp, cs as (m, e) pairs for the load pass. */
-#define NFIELDS (HERTZ_NOUT - HERTZ_NGIVEN)
-#define GEOMETRY_NOUT (NFIELDS + 8)
+ * load-pass coefficients cb, cd, cp, cs as (m, e) pairs. */
+#define GEOMETRY_NOUT (HERTZ_NFIELDS + HERTZ_NCOEFFICIENTS - 1)
 
 static int
 geometry_block(ptrdiff_t n, const double *const *in, double *const *out, int coefficients)
 {
-    hertz_geometry g[HERTZ_BLOCK];
-    ptrdiff_t bad = 0;
-    int code = hertz_geometry_block(n, in, g, &bad, 1);
-    if (code != HERTZ_OK) {
-        return geometry_error(code, bad, in, 0.0, 0, &g[bad]);
+    double fields[HERTZ_NFIELDS * HERTZ_BLOCK], cbuf[HERTZ_NCOEFFICIENTS][HERTZ_BLOCK];
+    double *c[HERTZ_NCOEFFICIENTS];
+    for (int k = 0; k < HERTZ_NCOEFFICIENTS; ++k) {
+        c[k] = coefficients && k > 0 ? out[HERTZ_NFIELDS + k - 1] : cbuf[k];
     }
-    for (ptrdiff_t i = 0; i < n; ++i) {
-        const hertz_geometry *gi = &g[i];
-        double row[GEOMETRY_NOUT];
-        hertz_geometry_fields(gi, row);
-        double extra[8] = {gi->cb.m, gi->cb.e, gi->cd.m, gi->cd.e,
-                           gi->cp.m, gi->cp.e, gi->cs.m, gi->cs.e};
-        for (int k = 0; k < 8; ++k) {
-            row[NFIELDS + k] = extra[k];
-        }
-        int count = coefficients ? GEOMETRY_NOUT : NFIELDS;
-        for (int k = 0; k < count; ++k) {
-            out[k][i] = row[k];
-        }
+    ptrdiff_t bad = 0;
+    double rho_x = 0.0, rho_y = 0.0;
+    int code = hertz_geometry_block(n, in, c, fields, &bad, &rho_x, &rho_y);
+    if (code != HERTZ_OK) {
+        return geometry_error(code, bad, in, 0.0, 0, rho_x, rho_y);
+    }
+    for (int k = 0; k < HERTZ_NFIELDS; ++k) {
+        memcpy(out[k], fields + k * n, (size_t)n * sizeof(double));
     }
     return 0;
 }
 
-/* The load pass: inputs lam and the 8 coefficient numbers from
- * geometry_block, then the value; outputs a, b, load, p0, delta, stiffness. */
+/* The load pass: inputs the coefficients (lambda first) and the value;
+ * outputs a, b, load, p0, delta, stiffness. */
 static int
 given_block(ptrdiff_t n, const double *const *in, double *const *out, int mode)
 {
-    for (ptrdiff_t i = 0; i < n; ++i) {
-        hertz_geometry g;
-        g.lam = in[0][i];
-        g.cb.m = in[1][i];
-        g.cb.e = (int)in[2][i];
-        g.cd.m = in[3][i];
-        g.cd.e = (int)in[4][i];
-        g.cp.m = in[5][i];
-        g.cp.e = (int)in[6][i];
-        g.cs.m = in[7][i];
-        g.cs.e = (int)in[8][i];
-        double given[HERTZ_NGIVEN], value = in[9][i];
-        if (hertz_contact_given(&g, mode, value, given) != HERTZ_OK) {
-            set_error_nogil(HERTZ_BAD_VALUE, NULL, value, mode, 0.0, 0.0);
-            return -1;
-        }
-        for (int k = 0; k < HERTZ_NGIVEN; ++k) {
-            out[k][i] = given[k];
-        }
+    ptrdiff_t bad = 0;
+    if (hertz_given_block(n, mode, in, in[HERTZ_NCOEFFICIENTS], out, &bad) != HERTZ_OK) {
+        set_error_nogil(HERTZ_BAD_VALUE, NULL, in[HERTZ_NCOEFFICIENTS][bad], mode, 0.0, 0.0);
+        return -1;
     }
     return 0;
+}
+
+/* One contact, the same code as an array of them: returns the error code;
+ * out = the HERTZ_NOUT fields. */
+static int
+contact_one(const double in[HERTZ_NGEOMETRY + 1], int mode, int with_fields,
+            double out[HERTZ_NOUT], double *rho_x, double *rho_y)
+{
+    const double *ptr[HERTZ_NGEOMETRY + 1];
+    for (int k = 0; k <= HERTZ_NGEOMETRY; ++k) {
+        ptr[k] = in + k;
+    }
+    double *given[HERTZ_NGIVEN];
+    for (int k = 0; k < HERTZ_NGIVEN; ++k) {
+        given[k] = out + k;
+    }
+    ptrdiff_t bad = 0;
+    int code = hertz_contact_block(1, ptr, mode, given, &bad, rho_x, rho_y);
+    if (code == HERTZ_OK && with_fields) {
+        double cbuf[HERTZ_NCOEFFICIENTS], *c[HERTZ_NCOEFFICIENTS];
+        for (int k = 0; k < HERTZ_NCOEFFICIENTS; ++k) {
+            c[k] = cbuf + k;
+        }
+        code = hertz_geometry_block(1, ptr, c, out + HERTZ_NGIVEN, &bad, rho_x, rho_y);
+    }
+    return code;
 }
 
 /* Error code of each element (0 where it is fine), for locating the first
@@ -278,18 +273,11 @@ static int
 contact_status_block(ptrdiff_t n, const double *const *in, double *const *out, int mode)
 {
     for (ptrdiff_t i = 0; i < n; ++i) {
-        const double *one[HERTZ_NGEOMETRY];
-        for (int k = 0; k < HERTZ_NGEOMETRY; ++k) {
-            one[k] = in[k] + i;
+        double row[HERTZ_NGEOMETRY + 1], fields[HERTZ_NOUT], rho_x, rho_y;
+        for (int k = 0; k <= HERTZ_NGEOMETRY; ++k) {
+            row[k] = in[k][i];
         }
-        hertz_geometry g;
-        ptrdiff_t bad;
-        double given[HERTZ_NGIVEN];
-        int code = hertz_geometry_block(1, one, &g, &bad, 0);
-        if (code == HERTZ_OK) {
-            code = hertz_contact_given(&g, mode, in[HERTZ_NGEOMETRY][i], given);
-        }
-        out[0][i] = code;
+        out[0][i] = contact_one(row, mode, 0, fields, &rho_x, &rho_y);
     }
     return 0;
 }
@@ -387,7 +375,7 @@ LOOP(ellipse1_loop, 1, 4, ellipse_block, 1)
 LOOP(contact_load_loop, 10, HERTZ_NGIVEN, contact_block, HERTZ_GIVEN_LOAD)
 LOOP(contact_approach_loop, 10, HERTZ_NGIVEN, contact_block, HERTZ_GIVEN_APPROACH)
 LOOP(contact_p0_loop, 10, HERTZ_NGIVEN, contact_block, HERTZ_GIVEN_P0)
-LOOP(geometry_loop, 9, NFIELDS, geometry_block, 0)
+LOOP(geometry_loop, 9, HERTZ_NFIELDS, geometry_block, 0)
 LOOP(coefficients_loop, 9, GEOMETRY_NOUT, geometry_block, 1)
 LOOP(given_load_loop, 10, 6, given_block, HERTZ_GIVEN_LOAD)
 LOOP(given_approach_loop, 10, 6, given_block, HERTZ_GIVEN_APPROACH)
@@ -579,23 +567,12 @@ contact_scalar(PyObject *self, PyObject *const *args, Py_ssize_t nargs)
         PyErr_SetString(PyExc_ValueError, "contact: mode must be 0, 1 or 2");
         return NULL;
     }
-    const double *geo = x + 1;
-    const double *in[HERTZ_NGEOMETRY];
-    for (int k = 0; k < HERTZ_NGEOMETRY; ++k) {
-        in[k] = geo + k;
-    }
-    hertz_geometry g;
-    ptrdiff_t bad;
-    double fields[HERTZ_NOUT];
-    int code = hertz_geometry_block(1, in, &g, &bad, 1);
-    if (code == HERTZ_OK) {
-        code = hertz_contact_given(&g, mode, x[10], fields);
-    }
+    double fields[HERTZ_NOUT], rho_x = 0.0, rho_y = 0.0;
+    int code = contact_one(x + 1, mode, 1, fields, &rho_x, &rho_y);
     if (code != HERTZ_OK) {
-        set_error(code, geo, x[10], mode, g.rho_x, g.rho_y);
+        set_error(code, x + 1, x[10], mode, rho_x, rho_y);
         return NULL;
     }
-    hertz_geometry_fields(&g, fields + HERTZ_NGIVEN);
     return contact_type ? new_contact(fields) : tuple_of(fields, HERTZ_NOUT);
 }
 
@@ -729,7 +706,7 @@ PyInit__ufuncs(void)
          "geometry, moduli, approach -> a, b, load, p0, delta, stiffness (private)"},
         {"contact_p0", 10, HERTZ_NGIVEN, contact_p0_loop,
          "geometry, moduli, peak pressure -> a, b, load, p0, delta, stiffness (private)"},
-        {"contact_geometry", 9, NFIELDS, geometry_loop,
+        {"contact_geometry", 9, HERTZ_NFIELDS, geometry_loop,
          "geometry and moduli -> lambda, alpha, m, K, E, e_star, rho_x, rho_y, theta "
          "(private)"},
         {"contact_coefficients", 9, GEOMETRY_NOUT, coefficients_loop,
