@@ -316,12 +316,25 @@ line_block(ptrdiff_t n, const double *const *in, double *const *out, int status_
  * in place, the others copied through block buffers. */
 static int
 drive(char *const data[], npy_intp const dims[], npy_intp const steps[], int nin, int nout,
-      block_fn fn, int variant)
+      block_fn fn, int variant, int any_length)
 {
     double buf[MAXARGS][HERTZ_BLOCK];
     const double *in[MAXARGS];
     double *out[MAXARGS];
     npy_intp total = dims[0];
+    int contiguous = 1;
+    for (int k = 0; k < nin + nout; ++k) {
+        contiguous &= steps[k] == sizeof(double);
+    }
+    if (any_length && contiguous) { /* the solver blocks the work itself */
+        for (int k = 0; k < nin; ++k) {
+            in[k] = (const double *)data[k];
+        }
+        for (int k = 0; k < nout; ++k) {
+            out[k] = (double *)data[nin + k];
+        }
+        return fn((ptrdiff_t)total, in, out, variant);
+    }
     for (npy_intp start = 0; start < total; start += HERTZ_BLOCK) {
         ptrdiff_t n = total - start < HERTZ_BLOCK ? (ptrdiff_t)(total - start) : HERTZ_BLOCK;
         for (int k = 0; k < nin; ++k) {
@@ -357,21 +370,23 @@ drive(char *const data[], npy_intp const dims[], npy_intp const steps[], int nin
     return 0;
 }
 
-#define LOOP(NAME, NIN, NOUT, FN, VARIANT)                                                 \
+/* ANY: the block function takes any length (the ellipse solver does). */
+#define LOOP_ANY(NAME, NIN, NOUT, FN, VARIANT, ANY)                                          \
     static int NAME(PyArrayMethod_Context *context, char *const data[],                    \
                     npy_intp const dims[], npy_intp const steps[], NpyAuxData *aux)        \
     {                                                                                      \
         (void)context;                                                                     \
         (void)aux;                                                                         \
-        return drive(data, dims, steps, NIN, NOUT, FN, VARIANT);                           \
+        return drive(data, dims, steps, NIN, NOUT, FN, VARIANT, ANY);                      \
     }
+#define LOOP(NAME, NIN, NOUT, FN, VARIANT) LOOP_ANY(NAME, NIN, NOUT, FN, VARIANT, 0)
 
-LOOP(ellipticity0_loop, 1, 1, ellipticity_block, 0)
-LOOP(ellipticity1_loop, 1, 1, ellipticity_block, 1)
-LOOP(ellipticity2_loop, 1, 1, ellipticity_block, 2)
-LOOP(ellipticity3_loop, 1, 1, ellipticity_block, 3)
-LOOP(ellipse0_loop, 1, 4, ellipse_block, 0)
-LOOP(ellipse1_loop, 1, 4, ellipse_block, 1)
+LOOP_ANY(ellipticity0_loop, 1, 1, ellipticity_block, 0, 1)
+LOOP_ANY(ellipticity1_loop, 1, 1, ellipticity_block, 1, 1)
+LOOP_ANY(ellipticity2_loop, 1, 1, ellipticity_block, 2, 1)
+LOOP_ANY(ellipticity3_loop, 1, 1, ellipticity_block, 3, 1)
+LOOP_ANY(ellipse0_loop, 1, 4, ellipse_block, 0, 1)
+LOOP_ANY(ellipse1_loop, 1, 4, ellipse_block, 1, 1)
 LOOP(contact_load_loop, 10, HERTZ_NGIVEN, contact_block, HERTZ_GIVEN_LOAD)
 LOOP(contact_approach_loop, 10, HERTZ_NGIVEN, contact_block, HERTZ_GIVEN_APPROACH)
 LOOP(contact_p0_loop, 10, HERTZ_NGIVEN, contact_block, HERTZ_GIVEN_P0)
