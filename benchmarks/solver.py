@@ -1,22 +1,29 @@
-"""Accuracy and speed of hertz.ellipticity: the figures of the README's solver section.
+"""Accuracy and speed of hertz.ellipticity and hertz.contact: the README's solver tables.
 
     python benchmarks/solver.py [--n 1000000] [--repeats 11] [--no-readme]
 
 Accuracy: maximum relative error against the 50-digit mpmath table
 tests/data/reference_lambda.csv (regenerate with tests/make_reference_table.py).
-Speed: N alphas log-uniform in [1, 1e6]; every contender is timed once per
-round, rounds interleaved, and the ratio to one scipy.special.ellipk +
-ellipe pass over N parameters is taken within each round (the machine's
-speed drifts between rounds); medians over the rounds are reported.  The
-tables replace the solver section of README.md unless --no-readme.
+Speed: N alphas log-uniform in [1, 1e6] (and N contacts); every contender
+is timed once per round, rounds interleaved, and the ratio to one
+scipy.special.ellipk + ellipe pass over N parameters is taken within each
+round (the machine's speed drifts between rounds); medians over the rounds
+are reported.  Times are the process's CPU time (time.process_time, one
+BLAS thread), so that other work on the machine does not count.  Scalar
+calls are timed the same way against one scalar ellipk(m) + ellipe(m)
+pair.  The tables replace the solver section of README.md unless
+--no-readme.
 """
 
 from __future__ import annotations
 
 import argparse
+import os
 import sys
 import time
 from pathlib import Path
+
+os.environ.setdefault("OPENBLAS_NUM_THREADS", "1")  # no spinning BLAS threads in CPU time
 
 import numpy as np
 from scipy import special
@@ -55,34 +62,59 @@ def accuracy() -> dict[str, float]:
     return out
 
 
+def _rounds(contenders: dict, repeats: int, calls: int = 1) -> dict[str, np.ndarray]:
+    """CPU seconds per call of each contender, one entry per round, rounds interleaved."""
+    times = {k: [] for k in contenders}
+    for f in contenders.values():  # warm-up
+        f()
+    for _ in range(repeats):
+        for name, f in contenders.items():
+            t0 = time.process_time()
+            for _ in range(calls):
+                f()
+            times[name].append((time.process_time() - t0) / calls)
+    return {k: np.array(v) for k, v in times.items()}
+
+
 def speed(n: int, repeats: int) -> dict[str, tuple[float, float]]:
     rng = np.random.default_rng(0)
     alpha = np.exp(rng.uniform(0.0, np.log(1e6), n))
     m = rng.uniform(0.0, 1.0, n)
     ball, race = hertz.Body.sphere(6e-3, 210e9, 0.3), hertz.Body(-6.2e-3, 40e-3, 210e9, 0.3)
     loads = rng.uniform(1.0, 2000.0, n)
+    angles = rng.uniform(-np.pi, np.pi, n)
     balls = hertz.Body.sphere(rng.uniform(2e-3, 2e-2, n), 210e9, 0.3)
-    races = hertz.Body(-rng.uniform(2.05e-2, 3e-2, n), rng.uniform(2e-2, 1e-1, n), 210e9, 0.3)
+    races = hertz.Body(-rng.uniform(2.05e-2, 3e-2, n), rng.uniform(2e-2, 1e-1, n), 70e9, 0.33)
     contenders = {
         "scipy ellipk + ellipe (reference)": lambda: (special.ellipk(m), special.ellipe(m)),
         "hertz.ellipticity": lambda: hertz.ellipticity(alpha),
         "hertz.ellipticity, iterations=0": lambda: hertz.ellipticity(alpha, iterations=0),
         "lambda, m, K, E (solve_ellipse)": lambda: solve_ellipse(alpha),
+        "hertz.contact, N geometries at random angles, two materials, N loads":
+            lambda: hertz.contact(balls, races, load=loads, angle=angles),
+        "hertz.contact, the same at angle 0": lambda: hertz.contact(balls, races, load=loads),
         "hertz.contact, one geometry, N loads": lambda: hertz.contact(ball, race, load=loads),
-        "hertz.contact, N geometries and loads": lambda: hertz.contact(balls, races, load=loads),
-        "hertz.contact, N geometries, angle 0.3 rad":
-            lambda: hertz.contact(balls, races, load=loads, angle=0.3),
     }
-    times = {k: [] for k in contenders}
-    for f in contenders.values():  # warm-up
-        f()
-    for _ in range(repeats):
-        for name, f in contenders.items():
-            t0 = time.perf_counter()
-            f()
-            times[name].append(time.perf_counter() - t0)
-    ref = np.array(times["scipy ellipk + ellipe (reference)"])
-    return {k: (np.median(v) / n * 1e9, np.median(np.array(v) / ref)) for k, v in times.items()}
+    times = _rounds(contenders, repeats)
+    ref = times["scipy ellipk + ellipe (reference)"]
+    return {k: (np.median(v) / n * 1e9, np.median(v / ref)) for k, v in times.items()}
+
+
+def scalar_speed(repeats: int, calls: int = 5000) -> dict[str, tuple[float, float]]:
+    ball, race = hertz.Body.sphere(6e-3, 210e9, 0.3), hertz.Body(-6.2e-3, 40e-3, 210e9, 0.3)
+    contenders = {
+        "scipy ellipk(m) + ellipe(m), one scalar pair (reference)":
+            lambda: (special.ellipk(0.5), special.ellipe(0.5)),
+        "hertz.ellipticity(10.0)": lambda: hertz.ellipticity(10.0),
+        "hertz.contact, existing bodies": lambda: hertz.contact(ball, race, load=1500.0),
+        "hertz.contact with two new Body objects": lambda: hertz.contact(
+            hertz.Body(6e-3, 6e-3, 210e9, 0.3), hertz.Body(-6.2e-3, 40e-3, 210e9, 0.3),
+            load=1500.0),
+        "hertz.Body(...)": lambda: hertz.Body(6e-3, 6e-3, 210e9, 0.3),
+    }
+    times = _rounds(contenders, repeats, calls)
+    ref = times["scipy ellipk(m) + ellipe(m), one scalar pair (reference)"]
+    return {k: (np.median(v) * 1e9, np.median(v / ref)) for k, v in times.items()}
 
 
 def main():
@@ -98,6 +130,10 @@ def main():
               f"| time / (ellipk + ellipe), median of {args.repeats} rounds |", "|---|---|---|"]
     lines += [f"| {name} | {ns:.1f} | {ratio:.2f} |"
               for name, (ns, ratio) in speed(args.n, args.repeats).items()]
+    lines += ["", "| one call with Python floats | ns per call (median) | time / (scalar "
+              f"ellipk + ellipe pair), median of {args.repeats} rounds |", "|---|---|---|"]
+    lines += [f"| {name} | {ns:.0f} | {ratio:.2f} |"
+              for name, (ns, ratio) in scalar_speed(args.repeats).items()]
     text = "\n".join(lines)
     print(text)
     if not args.no_readme:
