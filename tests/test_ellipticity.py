@@ -183,3 +183,23 @@ def test_vector_start_path_gives_the_same_bits():
     for bad in ([2.0, 3.0, 4.0, 5.0, 6.0, -1.0], [np.nan] * 9):
         with pytest.raises(ValueError, match="alpha"):
             hertz.ellipticity(bad, iterations=0)
+
+
+def test_ufunc_conventions():
+    """Any real dtype in, float64 out, out=, broadcasting; bool and complex refused."""
+    alpha = np.array([[1, 10], [100, 1000]], dtype=np.int32)
+    expected = hertz.ellipticity(alpha.astype(float))
+    for dtype in (np.int16, np.uint32, np.int64, np.float16, np.float32, np.longdouble):
+        got = hertz.ellipticity(alpha.astype(dtype))
+        assert got.dtype == np.float64
+        np.testing.assert_array_equal(got, hertz.ellipticity(alpha.astype(dtype).astype(float)))
+    out = np.empty((2, 2))
+    assert hertz.ellipticity(alpha, out=out) is out
+    np.testing.assert_array_equal(out, expected)
+    assert isinstance(hertz.ellipticity(10), float)
+    for bad in (True, np.array([True]), 1j, np.array([1 + 1j])):
+        with pytest.raises(TypeError, match="alpha must be a real number"):
+            hertz.ellipticity(bad)
+    with pytest.raises(ValueError, match=r"alpha must be a positive number.*got -1\.0 at index "
+                                         r"\(1, 0\)"):
+        hertz.ellipticity(np.array([[1.0, 2.0], [-1.0, 3.0]]))

@@ -1,0 +1,153 @@
+"""Stresses below a Hertz contact (Python face of hertz/_stress_kernel.c).
+
+The closed forms live in C (the file says what it computes and from which
+equations); this module checks and shapes the input, scales by p0 and the
+lengths, and wraps the maxima in :class:`Subsurface`.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+
+from . import _ufuncs
+from ._validate import as_float_array, is_duck_array
+
+__all__ = ["LineSubsurface", "Subsurface"]
+
+_CRITERIA = ("von_mises", "tresca")
+
+
+@dataclass(frozen=True, slots=True)
+class Subsurface:
+    """The largest stresses below a point contact, in one body.
+
+    Stresses in Pa, positions in m in the ellipse frame (x along the major
+    axis a, y along the minor axis b, z the depth below the surface).
+
+    Attributes
+    ----------
+    tau_max, z_tau_max : float or ndarray
+        The largest principal shear stress (s1 - s3)/2 [Pa] and its depth [m];
+        it lies on the z axis.
+    von_mises, z_von_mises : float or ndarray
+        The largest von Mises stress [Pa] and its depth [m], on the z axis.
+    tau_orthogonal, y_tau_orthogonal, z_tau_orthogonal : float or ndarray
+        The largest |tau_yz| in the plane x = 0 through the minor axis [Pa]
+        (the orthogonal shear stress of rolling along the minor axis,
+        Lundberg-Palmgren) and where it is (y > 0) [m].
+    tensile, x_tensile, y_tensile : float or ndarray
+        The largest tensile (principal) stress on the surface [Pa] and where
+        on the edge of the ellipse it is (x, y >= 0) [m].
+    """
+
+    tau_max: float | np.ndarray
+    z_tau_max: float | np.ndarray
+    von_mises: float | np.ndarray
+    z_von_mises: float | np.ndarray
+    tau_orthogonal: float | np.ndarray
+    y_tau_orthogonal: float | np.ndarray
+    z_tau_orthogonal: float | np.ndarray
+    tensile: float | np.ndarray
+    x_tensile: float | np.ndarray
+    y_tensile: float | np.ndarray
+
+
+@dataclass(frozen=True, slots=True)
+class LineSubsurface:
+    """The largest stresses below a line contact, in one body.
+
+    Attributes
+    ----------
+    tau_max, z_tau_max : float or ndarray
+        The largest principal shear stress [Pa] (on the z axis) and its depth [m].
+    von_mises, z_von_mises : float or ndarray
+        The largest von Mises stress [Pa] (plane strain, on the z axis) and its depth [m].
+    tau_orthogonal, x_tau_orthogonal, z_tau_orthogonal : float or ndarray
+        The largest |tau_xz| [Pa] (p0/4) and where it is (x > 0) [m].
+    """
+
+    tau_max: float | np.ndarray
+    z_tau_max: float | np.ndarray
+    von_mises: float | np.ndarray
+    z_von_mises: float | np.ndarray
+    tau_orthogonal: float | np.ndarray
+    x_tau_orthogonal: float | np.ndarray
+    z_tau_orthogonal: float | np.ndarray
+
+
+def poisson_of(nu_pair, body) -> float | np.ndarray:
+    """nu of body 1 or 2 from a contact's (nu1, nu2)."""
+    if body not in (1, 2) or isinstance(body, bool):
+        raise ValueError(f"body must be 1 or 2, got {body!r}")
+    return nu_pair[body - 1]
+
+
+def _scalar_or_array(x):
+    return float(x) if np.ndim(x) == 0 and not is_duck_array(x) else x
+
+
+def point_stress(a, b, p0, nu, x, y, z):
+    """The stress tensor [Pa], shape (..., 3, 3), at points (x, y, z) [m]."""
+    x, y, z = (as_float_array(v, name) if not is_duck_array(v) else v
+               for v, name in ((x, "x"), (y, "y"), (z, "z")))
+    if not is_duck_array(z) and np.any(z < 0):
+        raise ValueError(f"z must be a depth >= 0 in m, got {float(np.min(z))!r}")
+    sxx, syy, szz, syz, sxz, sxy = _ufuncs.point_stress(a, b, nu, x, y, z)
+    rows = [[sxx, sxy, sxz], [sxy, syy, syz], [sxz, syz, szz]]
+    out = np.stack([np.stack(r, axis=-1) for r in rows], axis=-2)
+    return out * np.asarray(p0)[..., None, None]
+
+
+def subsurface(a, b, p0, nu) -> Subsurface:
+    """The maxima below a point contact, scaled to Pa and m."""
+    (tau, z_tau, vm, z_vm, orth, y_orth, z_orth, tens, x_tens,
+     y_tens) = _ufuncs.subsurface(a, b, nu)
+    return Subsurface(*(_scalar_or_array(v) for v in (
+        tau * p0, z_tau, vm * p0, z_vm, orth * p0, y_orth, z_orth, tens * p0, x_tens, y_tens)))
+
+
+def line_stress(half_width, p0, nu, x, z):
+    """The stress tensor [Pa], shape (..., 3, 3), of a line contact at (x, z) [m]."""
+    x = as_float_array(x, "x")
+    z = as_float_array(z, "z")
+    if np.any(z < 0):
+        raise ValueError(f"z must be a depth >= 0 in m, got {float(np.min(z))!r}")
+    sxx, szz, sxz, syy = _ufuncs.line_stress(half_width, nu, x, z)
+    zero = np.zeros_like(sxx)
+    rows = [[sxx, zero, sxz], [zero, syy, zero], [sxz, zero, szz]]
+    out = np.stack([np.stack(r, axis=-1) for r in rows], axis=-2)
+    return out * np.asarray(p0)[..., None, None]
+
+
+def line_subsurface(half_width, p0, nu) -> LineSubsurface:
+    tau, z_tau, vm, z_vm, orth, x_orth, z_orth = _ufuncs.line_subsurface(half_width, nu)
+    return LineSubsurface(*(_scalar_or_array(v) for v in (
+        tau * p0, z_tau, vm * p0, z_vm, orth * p0, x_orth, z_orth)))
+
+
+def yield_p0(maxima, yield_strength, criterion: str):
+    """The peak pressure at which the maxima reach the yield strength [Pa].
+
+    von Mises: von_mises = yield_strength; Tresca: 2 tau_max = yield_strength.
+    The maxima are those of the same contact at its own p0 (they scale with it).
+    """
+    if criterion not in _CRITERIA:
+        raise ValueError(f"criterion must be one of {_CRITERIA}, got {criterion!r}")
+    strength = as_float_array(yield_strength, "yield_strength")
+    if not np.all((strength > 0) & np.isfinite(strength)):
+        bad = strength.reshape(-1)[int(np.argmin(((strength > 0) & np.isfinite(strength))
+                                                 .reshape(-1)))]
+        raise ValueError(f"yield_strength must be a positive, finite stress in Pa, "
+                         f"got {float(bad)!r}")
+    ratio = maxima[0] if criterion == "von_mises" else 2.0 * maxima[1]
+    return strength / ratio
+
+
+def first_yield_load(load, p0, p0_yield):
+    """P (p0_yield / p0)**3: the load at which the peak pressure is p0_yield [N]."""
+    return load * (p0_yield / p0) ** 3
+
+
