@@ -240,6 +240,8 @@ class Contact:
     stiffness: float | np.ndarray
     #: the nine geometry fields, or the _Deferred inputs to compute them from
     _geometry: tuple | _Deferred = field(repr=False)
+    #: Poisson's ratios (nu1, nu2) of the bodies, for the stresses
+    _nu: tuple = field(repr=False)
 
     ellipticity = _geometry_field(0, "a / b >= 1 [-].")
     alpha = _geometry_field(1, "Curvature ratio rho_x / rho_y >= 1 [-].")
@@ -290,6 +292,84 @@ class Contact:
         with np.errstate(divide="ignore", invalid="ignore"):
             return _semi_elliptic(self.p0, np.square(x / self.a) + np.square(y / self.b))
 
+    def stress(self, x, y, z, body=1):
+        """Cauchy stress tensor [Pa] at points of body 1 or 2 below the contact.
+
+        Exact closed forms (the ellipsoidal-coordinate potential solution,
+        Thomas & Hoersch 1930; Johnson, *Contact Mechanics*, sec. 3.5), with
+        the body's own Poisson's ratio; frictionless normal contact.
+
+        Parameters
+        ----------
+        x, y, z : float or array_like
+            Ellipse frame [m]: x along the major axis a, y along the minor
+            axis b, z >= 0 the depth into the body.  They broadcast with
+            each other and with the contact's shape.
+        body : {1, 2}
+            Which body.
+
+        Returns
+        -------
+        ndarray, shape (..., 3, 3)
+            The stress tensor, tension positive, rows and columns x, y, z.
+
+        Examples
+        --------
+        >>> import hertz
+        >>> ball = hertz.Body.sphere(0.01, E=210e9, nu=0.3)
+        >>> c = hertz.contact(ball, hertz.Body.plane(E=210e9, nu=0.3), load=100.0)
+        >>> s = c.stress(0.0, 0.0, 0.0)
+        >>> bool(abs(s[2, 2] + c.p0) < 1e-6 * c.p0)  # sigma_zz = -p0 at the centre
+        True
+        """
+        return _stress.point_stress(self.a, self.b, self.p0, _stress.poisson_of(self._nu, body),
+                                    x, y, z)
+
+    def subsurface(self, body=1) -> _stress.Subsurface:
+        """The largest stresses below the contact in body 1 or 2 and where they are.
+
+        Returns
+        -------
+        Subsurface
+            tau_max, von_mises (with their depths), the orthogonal shear
+            stress tau_orthogonal and the surface tension at the edge, in Pa
+            and m.
+
+        Examples
+        --------
+        >>> import hertz
+        >>> ball = hertz.Body.sphere(0.01, E=210e9, nu=0.3)
+        >>> c = hertz.contact(ball, hertz.Body.plane(E=210e9, nu=0.3), load=100.0)
+        >>> m = c.subsurface()
+        >>> print(f"{m.tau_max / c.p0:.4f} p0 at z = {m.z_tau_max / c.a:.4f} a")
+        0.3101 p0 at z = 0.4807 a
+        """
+        return _stress.subsurface(self.a, self.b, self.p0, _stress.poisson_of(self._nu, body))
+
+    def first_yield_load(self, yield_strength, body=1, criterion="von_mises"):
+        """The load [N] at which body 1 or 2 first yields.
+
+        The stresses scale with p0 and p0 with P**(1/3) at fixed geometry, so
+        the body first yields where the largest von Mises stress (or twice
+        the largest shear stress, for ``criterion="tresca"``) reaches the
+        yield strength: P_y = P (p0_y / p0)**3, scaled from this contact's
+        own load (which must be positive).
+
+        Parameters
+        ----------
+        yield_strength : float or array_like
+            Yield strength of the body in tension [Pa].
+        body : {1, 2}
+            Which body.
+        criterion : {"von_mises", "tresca"}
+        """
+        nu = _stress.poisson_of(self._nu, body)
+        unit = _stress.subsurface(self.a, self.b, 1.0, nu)  # the maxima per unit p0
+        p0_yield = _stress.yield_p0((unit.von_mises, unit.tau_max), yield_strength, criterion)
+        return _stress.first_yield_load(self.load, self.p0, p0_yield)
+
+
+from . import _stress  # noqa: E402  (the stress face uses Contact's fields only)
 
 _ufuncs.register_contact_type(Contact)
 
@@ -333,6 +413,8 @@ class LineContact:
     e_star: float | np.ndarray
     rho_sum: float | np.ndarray
     load_per_length: float | np.ndarray
+    #: Poisson's ratios (nu1, nu2) of the bodies, for the stresses
+    _nu: tuple = field(repr=False)
 
     @property
     def p_mean(self):
@@ -345,6 +427,21 @@ class LineContact:
         with np.errstate(divide="ignore", invalid="ignore"):
             return _semi_elliptic(self.p0, np.square(x / self.half_width))
 
+    def stress(self, x, z, body=1):
+        """Stress tensor [Pa] in body 1 or 2 below the line contact (plane strain).
+
+        McEwen's closed forms (1949); x across the strip, z >= 0 the depth
+        [m], the contact line along y.  Returns shape (..., 3, 3), rows and
+        columns x, y, z, tension positive; sigma_yy = nu (sigma_xx + sigma_zz).
+        """
+        return _stress.line_stress(self.half_width, self.p0,
+                                   _stress.poisson_of(self._nu, body), x, z)
+
+    def subsurface(self, body=1) -> _stress.LineSubsurface:
+        """The largest stresses below the line contact in body 1 or 2 and where they are."""
+        return _stress.line_subsurface(self.half_width, self.p0,
+                                       _stress.poisson_of(self._nu, body))
+
 
 def _check_body(body, name: str) -> Body:
     if type(body) is not Body and not isinstance(body, Body):
@@ -352,11 +449,11 @@ def _check_body(body, name: str) -> Body:
     return body
 
 
-def _finish(values, cls):
+def _finish(values, cls, *extra):
     """The result object; 0-d results become Python floats."""
     if np.ndim(values[0]) == 0:
-        return cls(*(float(v) for v in values))
-    return cls(*values)
+        return cls(*(float(v) for v in values), *extra)
+    return cls(*values, *extra)
 
 
 def _first_error(status_ufunc, scalar, args, shape, extra=()):
@@ -469,7 +566,8 @@ def contact(body1: Body, body2: Body, load=None, angle=0.0, *, approach=None,
     geometry = args[:9]
     if any(is_duck_array(a) for a in args):
         shape = _dask_shape(args)
-        return Contact(*_dask_apply(fused, args, 6, shape), _Deferred(geometry, shape))
+        return Contact(*_dask_apply(fused, args, 6, shape), _Deferred(geometry, shape),
+                       (body1.nu, body2.nu))
     geometry_shape = broadcast_shape(**dict(zip(_GEOMETRY_NAMES, geometry, strict=True)))
     shape = broadcast_shape(**dict(zip(_GEOMETRY_NAMES, geometry, strict=True)),
                             **{name: args[9]})
@@ -477,13 +575,14 @@ def contact(body1: Body, body2: Body, load=None, angle=0.0, *, approach=None,
         if math.prod(geometry_shape) == math.prod(shape):
             if not shape:  # numpy scalars or 0-d arrays: the scalar path
                 return _ufuncs.contact(mode, *(float(x) for x in args))
-            return Contact(*fused(*args), _Deferred(geometry, shape))
+            return Contact(*fused(*args), _Deferred(geometry, shape), (body1.nu, body2.nu))
         # One geometry carries many loads: solve each geometry once and
         # broadcast its fields (read-only views) over the loads.
         coefficients = _ufuncs.contact_coefficients(*geometry)
         fields = coefficients[:9]
         given_values = given(fields[0], *coefficients[9:], args[9])
-        return Contact(*given_values, tuple(np.broadcast_to(x, shape) for x in fields))
+        return Contact(*given_values, tuple(np.broadcast_to(x, shape) for x in fields),
+                       (body1.nu, body2.nu))
     except ValueError as exc:
         err = _first_error(_ufuncs.contact_status, _ufuncs.contact, args, shape, (mode,))
         raise (err or exc) from None
@@ -534,15 +633,16 @@ def line_contact(body1: Body, body2: Body, load_per_length) -> LineContact:
     if body1._scalar and body2._scalar and (kind is float or kind is int):
         return LineContact(*_ufuncs.line_contact(body1.Rx, body1.Ry, body2.Rx, body2.Ry,
                                                  body1.E, body1.nu, body2.E, body2.nu,
-                                                 load_per_length))
+                                                 load_per_length), (body1.nu, body2.nu))
     args = [body1.Rx, body1.Ry, body2.Rx, body2.Ry, body1.E, body1.nu, body2.E, body2.nu,
             _real_arg(load_per_length, "load_per_length")]
     if any(is_duck_array(a) for a in args):
-        return LineContact(*_dask_apply(_ufuncs.line, args, 5, _dask_shape(args)))
+        return LineContact(*_dask_apply(_ufuncs.line, args, 5, _dask_shape(args)),
+                           (body1.nu, body2.nu))
     names = [n for n in _GEOMETRY_NAMES if n != "angle"] + ["load_per_length"]
     shape = broadcast_shape(**dict(zip(names, args, strict=True)))
     try:
-        return _finish(_ufuncs.line(*args), LineContact)
+        return _finish(_ufuncs.line(*args), LineContact, (body1.nu, body2.nu))
     except ValueError as exc:
         err = _first_error(_ufuncs.line_status, _ufuncs.line_contact, args, shape)
         raise (err or exc) from None

@@ -148,6 +148,14 @@ def yield_p0(maxima, yield_strength, criterion: str):
 
 def first_yield_load(load, p0, p0_yield):
     """P (p0_yield / p0)**3: the load at which the peak pressure is p0_yield [N]."""
-    return load * (p0_yield / p0) ** 3
+    p0 = np.asarray(p0)
+    if not np.all(p0 > 0):
+        i = int(np.argmin((p0 > 0).reshape(-1)))
+        where = f" at index {np.unravel_index(i, p0.shape)}" if p0.ndim else ""
+        raise ValueError("the first-yield load is scaled from the contact's own load, which "
+                         f"must be > 0, got {float(np.asarray(load).reshape(-1)[i])!r}{where}")
+    ratio = p0_yield / p0
+    out = load * (ratio * ratio * ratio)
+    return float(out) if np.ndim(out) == 0 else out
 
 

@@ -502,27 +502,28 @@ floats(PyObject *const *args, Py_ssize_t nargs, Py_ssize_t want, double *x, cons
 }
 
 /* The result class (hertz.Contact, a slotted frozen dataclass) and the
- * offsets of its slots a, b, load, p0, delta, stiffness and _geometry, so
- * that a scalar call builds its result without running Python code. */
+ * offsets of its slots a, b, load, p0, delta, stiffness, _geometry and _nu,
+ * so that a scalar call builds its result without running Python code. */
+#define CONTACT_SLOTS (HERTZ_NGIVEN + 2)
 static PyTypeObject *contact_type = NULL;
-static Py_ssize_t contact_offsets[HERTZ_NGIVEN + 1];
+static Py_ssize_t contact_offsets[CONTACT_SLOTS];
 
 PyDoc_STRVAR(register_doc,
 "register_contact_type(cls)\n\n"
 "Let contact() return instances of cls, a class with slots a, b, load, p0,\n"
-"delta, stiffness and _geometry.  Private: hertz._contact calls it once.");
+"delta, stiffness, _geometry and _nu.  Private: hertz._contact calls it once.");
 
 static PyObject *
 register_contact_type(PyObject *self, PyObject *cls)
 {
     (void)self;
-    static const char *const names[HERTZ_NGIVEN + 1] = {"a", "b", "load", "p0", "delta",
-                                                        "stiffness", "_geometry"};
+    static const char *const names[CONTACT_SLOTS] = {"a", "b", "load", "p0", "delta",
+                                                    "stiffness", "_geometry", "_nu"};
     if (!PyType_Check(cls)) {
         PyErr_SetString(PyExc_TypeError, "register_contact_type: a class is required");
         return NULL;
     }
-    for (int k = 0; k <= HERTZ_NGIVEN; ++k) {
+    for (int k = 0; k < CONTACT_SLOTS; ++k) {
         PyObject *d = PyDict_GetItemString(((PyTypeObject *)cls)->tp_dict, names[k]);
         if (d == NULL || !PyObject_TypeCheck(d, &PyMemberDescr_Type)
             || ((PyMemberDescrObject *)d)->d_member->type != T_OBJECT_EX) {
@@ -535,19 +536,20 @@ register_contact_type(PyObject *self, PyObject *cls)
     Py_RETURN_NONE;
 }
 
-/* An instance of the registered class from the HERTZ_NOUT fields. */
+/* An instance of the registered class from the HERTZ_NOUT fields and the
+ * two Poisson's ratios. */
 static PyObject *
-new_contact(const double *fields)
+new_contact(const double *fields, const double nu[2])
 {
     PyObject *geometry = tuple_of(fields + HERTZ_NGIVEN, HERTZ_NOUT - HERTZ_NGIVEN);
-    if (geometry == NULL) {
-        return NULL;
-    }
-    PyObject *obj = contact_type->tp_alloc(contact_type, 0);
+    PyObject *poisson = tuple_of(nu, 2);
+    PyObject *obj = geometry && poisson ? contact_type->tp_alloc(contact_type, 0) : NULL;
     if (obj == NULL) {
-        Py_DECREF(geometry);
+        Py_XDECREF(geometry);
+        Py_XDECREF(poisson);
         return NULL;
     }
+    *(PyObject **)((char *)obj + contact_offsets[HERTZ_NGIVEN + 1]) = poisson;
     for (int k = 0; k < HERTZ_NGIVEN; ++k) {
         PyObject *f = PyFloat_FromDouble(fields[k]);
         if (f == NULL) {
@@ -588,7 +590,8 @@ contact_scalar(PyObject *self, PyObject *const *args, Py_ssize_t nargs)
         set_error(code, x + 1, x[10], mode, rho_x, rho_y);
         return NULL;
     }
-    return contact_type ? new_contact(fields) : tuple_of(fields, HERTZ_NOUT);
+    double nu[2] = {x[1 + HERTZ_NU1], x[1 + HERTZ_NU2]};
+    return contact_type ? new_contact(fields, nu) : tuple_of(fields, HERTZ_NOUT);
 }
 
 PyDoc_STRVAR(line_scalar_doc,
