@@ -309,7 +309,7 @@ solve_block(const double *alpha, ptrdiff_t n, int iterations,
     return -1;
 }
 
-#if defined(__GNUC__) && defined(__x86_64__) && !defined(HERTZ_PLAIN)
+#if defined(__GNUC__) && defined(__x86_64__) && defined(__linux__) && !defined(HERTZ_PLAIN)
 #include <immintrin.h>
 #define HAVE_AVX2_START 1
 

@@ -1,0 +1,89 @@
+"""Build hertz._ufuncs again from the source tree beside these tests, and compare builds.
+
+:func:`build` runs the project's own setup.py (``build_ext``, so the same C files and the
+same per-compiler flags as ``pip install``) into a temporary directory and loads the result
+under another module object; :func:`assert_same_bits` compares two builds on the inputs of
+tests/test_kernel_builds.py. Used by tests/test_kernel_builds.py and tests/test_packaging.py.
+"""
+
+import importlib.machinery
+import importlib.util
+import os
+import shlex
+import shutil
+import subprocess
+import sys
+import sysconfig
+from pathlib import Path
+
+import numpy as np
+import pytest
+from reference import load_table
+
+#: The project root: setup.py, hertz/*.c (a checkout, the unpacked sdist, cibuildwheel's
+#: {project}).
+ROOT = Path(__file__).resolve().parents[1]
+
+
+def compiler_command(cc=None):
+    """The C compiler setuptools would run (``cc``, else $CC, else Python's CC) or None."""
+    command = cc or os.environ.get("CC") or sysconfig.get_config_var("CC")
+    if not command or not shlex.split(command):
+        return None
+    return shutil.which(shlex.split(command)[0])
+
+
+def build(tmp_path, *, cc=None, plain=False):
+    """hertz._ufuncs built by ``setup.py build_ext`` into ``tmp_path``, loaded as a module.
+
+    ``cc``: the compiler ($CC for setuptools; the linker follows it); ``plain``: with
+    HERTZ_PLAIN=1 (no AVX2 code). Skips when there is no setup.py beside the tests, on
+    Windows (MSVC is found by setuptools, not on PATH; its builds take the plain path
+    anyway) or when the compiler is not on PATH; fails with the compiler's output when the
+    build fails.
+    """
+    if not (ROOT / "setup.py").is_file() or not (ROOT / "hertz" / "_kernel.c").is_file():
+        pytest.skip(f"no source tree at {ROOT} (setup.py, hertz/*.c)")
+    if sys.platform == "win32":
+        pytest.skip("rebuilds are tested with Unix-style compilers only")
+    if compiler_command(cc) is None:
+        pytest.skip(f"no C compiler on PATH ({cc or os.environ.get('CC') or 'cc'})")
+    pytest.importorskip("setuptools")
+    env = {k: v for k, v in os.environ.items() if k not in ("HERTZ_PLAIN", "LDSHARED")}
+    if cc:
+        env["CC"] = cc
+    if plain:
+        env["HERTZ_PLAIN"] = "1"
+    lib, temp = tmp_path / "lib", tmp_path / "temp"
+    done = subprocess.run([sys.executable, "setup.py", "build_ext", "--build-lib", str(lib),
+                           "--build-temp", str(temp)], cwd=ROOT, env=env, capture_output=True,
+                          text=True)
+    if done.returncode != 0:
+        pytest.fail(f"setup.py build_ext failed ({cc or 'default compiler'}, plain={plain}):\n"
+                    f"{done.stdout[-4000:]}\n{done.stderr[-4000:]}")
+    so = lib / "hertz" / ("_ufuncs" + sysconfig.get_config_var("EXT_SUFFIX"))
+    assert so.is_file(), f"setup.py build_ext wrote no {so}:\n{done.stdout[-2000:]}"
+    loader = importlib.machinery.ExtensionFileLoader("hertz._ufuncs", str(so))
+    module = importlib.util.module_from_spec(importlib.util.spec_from_loader("hertz._ufuncs",
+                                                                             loader))
+    loader.exec_module(module)
+    module.build_log = done.stdout
+    return module
+
+
+def assert_same_bits(ours, other):
+    """The ellipse ufuncs (the 50-digit table's alphas and 50001 log-uniform ones in
+    [e^-60, e^60]) and contact_load (20000 random scenes) give identical arrays."""
+    rng = np.random.default_rng(1)
+    alpha = np.concatenate([[r["alpha"] for r in load_table()],
+                            np.exp(rng.uniform(-60, 60, 50_001))])
+    for name in ("ellipticity0", "ellipticity1", "ellipticity2", "ellipse0", "ellipse1"):
+        np.testing.assert_array_equal(getattr(ours, name)(alpha), getattr(other, name)(alpha),
+                                      err_msg=name)
+    n = 20_000
+    geometry = [rng.uniform(1e-3, 1e-1, n), rng.uniform(1e-3, 1e-1, n),
+                -rng.uniform(0.11, 0.2, n), rng.uniform(1e-3, 1e-1, n), rng.uniform(-3, 3, n),
+                np.full(n, 210e9), np.full(n, 0.3), rng.uniform(7e10, 4e11, n), np.full(n, 0.25)]
+    load = 10 ** rng.uniform(-3, 5, n)
+    np.testing.assert_array_equal(ours.contact_load(*geometry, load),
+                                  other.contact_load(*geometry, load), err_msg="contact_load")
