@@ -342,7 +342,7 @@ class Contact:
         >>> c = hertz.contact(ball, hertz.Body.plane(E=210e9, nu=0.3), load=100.0)
         >>> m = c.subsurface()
         >>> print(f"{m.tau_max / c.p0:.4f} p0 at z = {m.z_tau_max / c.a:.4f} a")
-        0.3101 p0 at z = 0.4807 a
+        0.3100 p0 at z = 0.4809 a
         """
         return _stress.subsurface(self.a, self.b, self.p0, _stress.poisson_of(self._nu, body))
 

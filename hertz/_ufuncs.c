@@ -1,6 +1,7 @@
 /*
  * hertz._ufuncs -- the numpy binding of the scalar C kernels (_kernel.c: the
- * ellipse solver; _contact_kernel.c: the contact formulas).
+ * ellipse solver; _contact_kernel.c: the contact formulas; _stress_kernel.c:
+ * the stresses below the contact).
  *
  * Every elementwise function is a numpy ufunc with one float64 loop
  * registered through the ArrayMethod API (numpy >= 2.0), so that a loop can
@@ -27,6 +28,7 @@
 
 #include "_contact_kernel.h"
 #include "_kernel.h"
+#include "_stress_kernel.h"
 
 #define MAXARGS 32
 
@@ -310,6 +312,99 @@ line_block(ptrdiff_t n, const double *const *in, double *const *out, int status_
     return 0;
 }
 
+/* The stress kernels: one element at a time; a nonzero code stops the loop
+ * with a ValueError naming the argument. */
+static int
+stress_error(int code, const char *fn, const double *args, int nargs)
+{
+    static const char *const what[] = {
+        "", "the semi-axes must be finite with a >= b > 0",
+        "nu must be a Poisson's ratio in (-1, 0.5]", "the point must have finite coordinates",
+        "z must be a depth >= 0"};
+    PyGILState_STATE state = PyGILState_Ensure();
+    char text[512];
+    int used = snprintf(text, sizeof text, "%s: %s, got (", fn,
+                        code >= 1 && code <= 4 ? what[code] : "invalid input");
+    for (int k = 0; k < nargs && used < (int)sizeof text; ++k) {
+        used += snprintf(text + used, sizeof text - (size_t)used, "%s%.17g", k ? ", " : "",
+                         args[k]);
+    }
+    PyErr_Format(PyExc_ValueError, "%s)", text);
+    PyGILState_Release(state);
+    return -1;
+}
+
+static int
+point_stress_block(ptrdiff_t n, const double *const *in, double *const *out, int unused)
+{
+    (void)unused;
+    for (ptrdiff_t i = 0; i < n; ++i) {
+        double args[6], res[6];
+        for (int k = 0; k < 6; ++k) {
+            args[k] = in[k][i];
+        }
+        int code = hertz_point_stress(args[0], args[1], args[2], args[3], args[4], args[5], res);
+        if (code) {
+            return stress_error(code, "stress (a, b, nu, x, y, z)", args, 6);
+        }
+        for (int k = 0; k < 6; ++k) {
+            out[k][i] = res[k];
+        }
+    }
+    return 0;
+}
+
+static int
+subsurface_block(ptrdiff_t n, const double *const *in, double *const *out, int unused)
+{
+    (void)unused;
+    for (ptrdiff_t i = 0; i < n; ++i) {
+        double args[3] = {in[0][i], in[1][i], in[2][i]}, res[12];
+        int code = hertz_subsurface(args[0], args[1], args[2], res);
+        if (code) {
+            return stress_error(code, "subsurface (a, b, nu)", args, 3);
+        }
+        for (int k = 0; k < 10; ++k) {
+            out[k][i] = res[k];
+        }
+    }
+    return 0;
+}
+
+static int
+line_stress_block(ptrdiff_t n, const double *const *in, double *const *out, int unused)
+{
+    (void)unused;
+    for (ptrdiff_t i = 0; i < n; ++i) {
+        double args[4] = {in[0][i], in[1][i], in[2][i], in[3][i]}, res[4];
+        int code = hertz_line_stress(args[0], args[1], args[2], args[3], res);
+        if (code) {
+            return stress_error(code, "line stress (b, nu, x, z)", args, 4);
+        }
+        for (int k = 0; k < 4; ++k) {
+            out[k][i] = res[k];
+        }
+    }
+    return 0;
+}
+
+static int
+line_subsurface_block(ptrdiff_t n, const double *const *in, double *const *out, int unused)
+{
+    (void)unused;
+    for (ptrdiff_t i = 0; i < n; ++i) {
+        double args[2] = {in[0][i], in[1][i]}, res[7];
+        int code = hertz_line_subsurface(args[0], args[1], res);
+        if (code) {
+            return stress_error(code, "line subsurface (b, nu)", args, 2);
+        }
+        for (int k = 0; k < 7; ++k) {
+            out[k][i] = res[k];
+        }
+    }
+    return 0;
+}
+
 /* ------------------------------------------------------ the ufunc loops */
 
 /* Run `fn` over a strided ufunc call in blocks: contiguous operands are used
@@ -398,6 +493,10 @@ LOOP(given_p0_loop, 10, 6, given_block, HERTZ_GIVEN_P0)
 LOOP(contact_status_loop, 10, 1, contact_status_block, HERTZ_GIVEN_LOAD)
 LOOP(line_loop, 9, 5, line_block, 0)
 LOOP(line_status_loop, 9, 1, line_block, 1)
+LOOP(point_stress_loop, 6, 6, point_stress_block, 0)
+LOOP(subsurface_loop, 3, 10, subsurface_block, 0)
+LOOP(line_stress_loop, 4, 4, line_stress_block, 0)
+LOOP(line_subsurface_loop, 2, 7, line_subsurface_block, 0)
 
 /* Any real dtype (and Python int/float) is cast to float64; bool, complex,
  * strings, datetimes and objects are refused. */
@@ -742,6 +841,14 @@ PyInit__ufuncs(void)
          "radii, moduli, load per length -> half_width, p0, e_star, rho, load (private)"},
         {"line_status", 9, 1, line_status_loop,
          "the error code of each line contact, 0 if none (private)"},
+        {"point_stress", 6, 6, point_stress_loop,
+         "a, b, nu, x, y, z -> sxx, syy, szz, syz, sxz, sxy per p0 (private)"},
+        {"subsurface", 3, 10, subsurface_loop,
+         "a, b, nu -> the maxima below a point contact per p0 (private)"},
+        {"line_stress", 4, 4, line_stress_loop,
+         "b, nu, x, z -> sxx, szz, sxz, syy per p0, line contact (private)"},
+        {"line_subsurface", 2, 7, line_subsurface_loop,
+         "b, nu -> the maxima below a line contact per p0 (private)"},
     };
     for (size_t i = 0; i < sizeof table / sizeof table[0]; ++i) {
         if (add_ufunc(module, table[i].name, table[i].doc, table[i].nin, table[i].nout,

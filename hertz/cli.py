@@ -7,6 +7,7 @@ scene file change any of it::
 
     hertz --load 800 --json
     hertz --scene my_scene.toml --angle-deg 30
+    hertz --yield-strength 1.5e9 --plot stresses.png
 
 A scene file holds the same names as the options::
 
@@ -84,6 +85,12 @@ def _parser() -> argparse.ArgumentParser:
                       help="approach of the bodies [m] (the load is computed)")
     p.add_argument("--angle-deg", type=_number, metavar="DEG",
                    help="angle between the bodies' x axes [degrees]")
+    p.add_argument("--yield-strength", type=_number, metavar="PA",
+                   help="yield strength of both bodies [Pa]: adds the load at which each first "
+                        "yields (von Mises and Tresca)")
+    p.add_argument("--plot", metavar="FILE.png",
+                   help="draw the von Mises stress below the contact (needs matplotlib: "
+                        "pip install 'hertz[plot]')")
     p.add_argument("--json", action="store_true", help="print one JSON object instead of a table")
     return p
 
@@ -223,13 +230,62 @@ def _table(scene, body1, body2, c) -> str:
     return "\n".join(lines)
 
 
-def _json(scene, c) -> str:
+_MAXIMA = ("tau_max", "z_tau_max", "von_mises", "z_von_mises", "tau_orthogonal",
+           "y_tau_orthogonal", "z_tau_orthogonal", "tensile", "x_tensile", "y_tensile")
+
+
+def _finite(value: float):
+    return value if math.isfinite(value) else None
+
+
+def _stresses(c, yield_strength) -> dict:
+    """{"body1": {...}, "body2": {...}}: the subsurface maxima and first-yield loads."""
+    out = {}
+    for body in (1, 2):
+        maxima = c.subsurface(body)
+        row = {k: _finite(float(getattr(maxima, k))) for k in _MAXIMA}
+        if yield_strength is not None:
+            for criterion in ("von_mises", "tresca"):
+                load = c.first_yield_load(yield_strength, body=body, criterion=criterion)
+                row[f"first_yield_load_{criterion}"] = _finite(float(load))
+        out[f"body{body}"] = row
+    return out
+
+
+def _json(scene, c, stresses) -> str:
     keys = ("a", "b", "p0", "delta", "load", "ellipticity", "alpha", "m", "K", "E", "e_star",
             "rho_x", "rho_y", "rho_sum", "major_axis_angle", "p_mean", "area", "stiffness")
-    values = {k: float(getattr(c, k)) for k in keys}
-    out = {"scene": scene["name"], **{k: v if math.isfinite(v) else None
-                                      for k, v in values.items()}}
+    out = {"scene": scene["name"], **{k: _finite(float(getattr(c, k))) for k in keys},
+           "stresses": stresses}
     return json.dumps(out, allow_nan=False)
+
+
+def _stress_table(stresses, yield_strength) -> list[str]:
+    lines = ["  stresses below the contact (frictionless; each body with its own nu):"]
+    labels = [("largest shear stress tau1", "tau_max", "z_tau_max", "Pa", "depth"),
+              ("largest von Mises stress", "von_mises", "z_von_mises", "Pa", "depth"),
+              ("orthogonal shear |tau_yz|", "tau_orthogonal", "z_tau_orthogonal", "Pa", "depth"),
+              ("surface tension at edge", "tensile", None, "Pa", None)]
+    width = max(len(label) for label, *_ in labels) + 2
+    for body in (1, 2):
+        row = stresses[f"body{body}"]
+        lines.append(f"    body {body}:")
+        for label, key, where, unit, kind in labels:
+            value = _si(row[key], unit) if row[key] is not None else "overflow"
+            at = f" at {kind} {_si(row[where], 'm')}" if where and row[where] is not None else ""
+            if key == "tau_orthogonal" and row["y_tau_orthogonal"] is not None:
+                at += f", y = {_si(row['y_tau_orthogonal'], 'm')}"
+            if key == "tensile" and row["x_tensile"] is not None:
+                at = (f" at x = {_si(row['x_tensile'], 'm')}, "
+                      f"y = {_si(row['y_tensile'], 'm')}")
+            lines.append(f"      {label:<{width}}{value}{at}")
+        if yield_strength is not None:
+            for criterion, name in (("von_mises", "von Mises"), ("tresca", "Tresca")):
+                load = row[f"first_yield_load_{criterion}"]
+                text = _si(load, "N") if load is not None else "overflow"
+                lines.append(f"      {'first yield, ' + name:<{width}}{text} "
+                             f"(yield strength {_si(yield_strength, 'Pa')})")
+    return lines
 
 
 def main(argv=None) -> int:
@@ -238,11 +294,19 @@ def main(argv=None) -> int:
         args = _parser().parse_args(argv)
         scene = _scene(args)
         body1, body2, c = _solve(scene)
+        stresses = _stresses(c, args.yield_strength)
+        if args.plot:
+            _plot(c, scene, args.plot)
     except (_UsageError, ValueError) as exc:
         print(f"hertz: error: {exc}", file=sys.stderr)
         return 2
     try:
-        print(_json(scene, c) if args.json else _table(scene, body1, body2, c), flush=True)
+        if args.json:
+            text = _json(scene, c, stresses)
+        else:
+            text = "\n".join([_table(scene, body1, body2, c),
+                              *_stress_table(stresses, args.yield_strength)])
+        print(text, flush=True)
     except BrokenPipeError:  # `hertz | head`: the reader left; stop quietly
         os.dup2(os.open(os.devnull, os.O_WRONLY), sys.stdout.fileno())
     except OSError as exc:  # a full disk, a closed descriptor
@@ -250,6 +314,18 @@ def main(argv=None) -> int:
         print(f"hertz: error: cannot write the output: {exc.strerror or exc}", file=sys.stderr)
         return 2
     return 0
+
+
+def _plot(c, scene, path: str) -> None:
+    try:
+        from ._plot import stress_figure
+    except ImportError as exc:
+        raise _UsageError(f"--plot needs matplotlib ({exc.name} is not installed): "
+                          "pip install 'hertz[plot]'") from None
+    try:
+        stress_figure(c, title=scene["name"]).savefig(path, dpi=130)
+    except (OSError, ValueError) as exc:
+        raise _UsageError(f"cannot write the plot {path!r}: {exc}") from None
 
 
 if __name__ == "__main__":

@@ -73,7 +73,8 @@ def build(tmp_path, *, cc=None, plain=False):
 
 def assert_same_bits(ours, other):
     """The ellipse ufuncs (the 50-digit table's alphas and 50001 log-uniform ones in
-    [e^-60, e^60]) and contact_load (20000 random scenes) give identical arrays."""
+    [e^-60, e^60]), contact_load and contact_coefficients (20000 random scenes) and the
+    stress ufuncs give identical arrays."""
     rng = np.random.default_rng(1)
     alpha = np.concatenate([[r["alpha"] for r in load_table()],
                             np.exp(rng.uniform(-60, 60, 50_001))])
@@ -87,3 +88,15 @@ def assert_same_bits(ours, other):
     load = 10 ** rng.uniform(-3, 5, n)
     np.testing.assert_array_equal(ours.contact_load(*geometry, load),
                                   other.contact_load(*geometry, load), err_msg="contact_load")
+    np.testing.assert_array_equal(ours.contact_coefficients(*geometry[:9]),
+                                  other.contact_coefficients(*geometry[:9]),
+                                  err_msg="contact_coefficients")
+    m = 2_000
+    a, b = rng.uniform(1.0, 30.0, m), np.ones(m)
+    nu = rng.uniform(-0.5, 0.5, m)
+    point = [rng.uniform(-3, 3, m) * a, rng.uniform(-3, 3, m), rng.uniform(0, 3, m)]
+    np.testing.assert_array_equal(ours.point_stress(a, b, nu, *point),
+                                  other.point_stress(a, b, nu, *point), err_msg="point_stress")
+    np.testing.assert_array_equal(ours.subsurface(a[:200], b[:200], nu[:200]),
+                                  other.subsurface(a[:200], b[:200], nu[:200]),
+                                  err_msg="subsurface")

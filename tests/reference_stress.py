@@ -69,9 +69,12 @@ def _level_nodes(level, dps):
     return out
 
 
-def _ts(f, lo, hi, n, tol, maxlevel=12, minlevel=3):
+def _ts(f, lo, hi, n, tol, maxlevel=12, minlevel=2):
     """Integral of the vector function f (list of n mpf) over [lo, hi] by tanh-sinh.
-    f(x, dlo, dhi) receives the distances to both ends, exact near the ends."""
+    f(x, dlo, dhi) receives the distances to both ends, exact near the ends. The step is
+    halved until two levels differ by less than sqrt(tol * scale): the error of
+    double-exponential quadrature roughly squares from one level to the next, so the last
+    level is then good to about tol."""
     lo, hi = mp.mpf(lo), mp.mpf(hi)
     half = (hi - lo) / 2
     mid = (hi + lo) / 2
@@ -92,17 +95,72 @@ def _ts(f, lo, hi, n, tol, maxlevel=12, minlevel=3):
         # total halved plus the new (odd) nodes
         est = [t * half for t in total]
         if prev is not None and level >= minlevel:
-            if max(abs(e - p) for e, p in zip(est, prev)) <= tol:
+            diff = max(abs(e - p) for e, p in zip(est, prev))
+            scale = max(max(abs(e) for e in est), mp.mpf(1) if n == 6 else abs(half))
+            if diff <= tol or (diff / scale) ** 2 <= tol / scale / 100:
                 return est
         prev = est
         total = [t / 2 for t in total]
     return est
 
 
+# ---------------------------------------------------------------- Clenshaw-Curtis on [0, 1]
+_CCN = {}
+
+
+def _cc_rule(n, dps):
+    """Clenshaw-Curtis rule with n + 1 points on [0, 1]: lists v, 1 - v, sin(pi v),
+    sin^2(pi v / 2), cos^2(pi v / 2), weights."""
+    key = (n, dps)
+    if key not in _CCN:
+        with mp.workdps(dps + 10):
+            rows = []
+            for j in range(n + 1):
+                th = mp.pi * j / n
+                c = 1 if j in (0, n) else 2
+                acc = mp.mpf(1)
+                for k in range(1, n // 2 + 1):
+                    bk = 1 if 2 * k == n else 2
+                    acc -= bk * mp.cos(2 * k * th) / (4 * k * k - 1)
+                w = c * acc / n / 2
+                v, om = mp.sin(th / 2) ** 2, mp.cos(th / 2) ** 2   # (1 -+ cos th)/2
+                pv = mp.pi * v
+                rows.append((v, om, mp.sin(pv), mp.sin(pv / 2) ** 2, mp.cos(pv / 2) ** 2, w))
+            _CCN[key] = rows
+    return _CCN[key]
+
+
+def _cc(f, n_out, tol, nmin=16, nmax=2048):
+    """Integral over [0, 1] of the vector function f(v, 1 - v, sin(pi v), sin^2(pi v/2),
+    cos^2(pi v/2)) by nested Clenshaw-Curtis, doubling n until two estimates differ by
+    less than sqrt(tol) relative to the scale (the error then is about tol, convergence
+    being geometric)."""
+    dps = mp.mp.dps
+    vals = {}
+    n = nmin
+    prev = None
+    while True:
+        rule = _cc_rule(n, dps)
+        est = [mp.mpf(0)] * n_out
+        step = nmax // n
+        for j, (v, om, sp, s2, c2, w) in enumerate(rule):
+            key = j * step
+            if key not in vals:
+                vals[key] = f(v, om, sp, s2, c2)
+            est = [e + w * y for e, y in zip(est, vals[key])]
+        if prev is not None:
+            diff = max(abs(e - p) for e, p in zip(est, prev))
+            scale = max([abs(e) for e in est] + [mp.mpf(1)])
+            if diff <= tol or diff * diff <= tol * scale * mp.mpf("1e-2") or n >= nmax:
+                return est
+        prev = est
+        n *= 2
+
+
 # ---------------------------------------------------------------- point contact
-def _radial(a, b, x, y, z, theta, n_tol):
-    """Radial integrals J1..J5 along the ray from (x, y) in direction theta, and
-    cos/sin of theta. Returns None if the ray misses the ellipse."""
+def _radial(a, b, x, y, z, theta, tol):
+    """Radial integrals J1..J5 (see _angular) along the ray from (x, y) in direction theta,
+    and cos, sin of theta; None if the ray misses the ellipse."""
     c, s = mp.cos(theta), mp.sin(theta)
     qa = (c / a) ** 2 + (s / b) ** 2
     qb = x * c / a ** 2 + y * s / b ** 2
@@ -111,60 +169,118 @@ def _radial(a, b, x, y, z, theta, n_tol):
     if disc <= 0:
         return None
     sq = mp.sqrt(disc)
-    # roots of qa r^2 + 2 qb r + qc = 0
+    # the source (x + r c, y + r s) is on the edge where qa r^2 + 2 qb r + qc = 0
     if qb >= 0:
-        r1 = -(qb + sq) / qa
-        r2 = qc / (qa * r1) if r1 != 0 else mp.mpf(0)
+        ra = -(qb + sq) / qa
+        rb = qc / (qa * ra)
     else:
-        r2 = (-qb + sq) / qa
-        r1 = qc / (qa * r2)
-    r1, r2 = min(r1, r2), max(r1, r2)
+        rb = (sq - qb) / qa
+        ra = qc / (qa * rb) if rb != 0 else mp.mpf(0)
+    r1, r2 = min(ra, rb), max(ra, rb)
     if r2 <= 0:
         return None
-    lo = max(r1, mp.mpf(0))
-    inside = r1 <= 0
+    inside = r1 <= 0            # the chord starts at the field point
+
+    def cosmap(lo, hi, v0):
+        """x = lo + (hi - lo) sin^2(pi v/2) for v = v0 + (1 - v0) t: x - lo and hi - x are
+        squares of analytic functions of t. Returns a function of the CC node giving
+        (x - lo, hi - x, dx/dt)."""
+        L = hi - lo
+        if v0 == 0:
+            return lambda v, om, sp, s2, c2: (L * s2, L * c2, L * mp.pi * sp / 2)
+        w = 1 - v0
+
+        def m(v, om, sp, s2, c2):
+            ph = mp.pi * (v0 + w * v) / 2
+            return L * mp.sin(ph) ** 2, L * mp.cos(ph) ** 2, L * mp.pi * mp.sin(2 * ph) * w / 2
+        return m
 
     if z > 0:
-        slo = mp.asinh(lo / z)
-        shi = mp.asinh(r2 / z)
+        S = mp.asinh(r2 / z)
+        eS = mp.exp(S)
+        s1 = mp.asinh(r1 / z)
+        es1 = mp.exp(s1)
+        if inside and s1 < -1:
+            # s = S (1 - om^2) on [0, S]; the zero of p at s1 is far enough
+            def smap(v, om, sp, s2, c2):
+                dhi = S * om * om
+                return S - dhi, dhi, 2 * S * om
+        else:
+            v0 = 2 / mp.pi * mp.asin(mp.sqrt(-s1 / (S - s1))) if inside else mp.mpf(0)
+            cm = cosmap(s1, S, v0)
 
-        def f(sv, dlo, dhi):
-            r = z * mp.sinh(sv)
-            # r2 - r and r - r1 from the distances to the ends, exact near the ends
-            d2 = 2 * z * mp.cosh((shi + sv) / 2) * mp.sinh(dhi / 2)
-            d1 = r - r1 if inside else 2 * z * mp.cosh((slo + sv) / 2) * mp.sinh(dlo / 2)
-            p = mp.sqrt(qa * max(d2, 0) * max(d1, 0))
-            th, sh = mp.tanh(sv), 1 / mp.cosh(sv)
-            return [p * mp.tanh(sv / 2), p * th * sh, p * th ** 3 * sh,
-                    p * th * sh ** 3, p * th ** 2 * sh ** 2]
+            def smap(v, om, sp, s2, c2):
+                dlo, dhi, ds = cm(v, om, sp, s2, c2)
+                return s1 + dlo, dhi, ds
 
-        J = _ts(f, slo, shi, 5, n_tol)
+        def f(*node):
+            sv, dhi, ds = smap(*node)
+            if ds == 0:
+                return [mp.mpf(0)] * 5
+            e = mp.exp(sv)
+            sh = (e - 1 / e) / 2 if abs(sv) > mp.mpf("0.1") else mp.sinh(sv)
+            ch = (e + 1 / e) / 2
+            r = z * sh
+            # r2 - r = z (sinh S - sinh s), r - r1 = z (sinh s - sinh s1), exact near the ends
+            d2 = r2 - r if dhi > mp.mpf("0.5") else \
+                z * e * mp.expm1(dhi) * (1 + 1 / (e * eS)) / 2
+            dlo = sv - s1
+            d1 = r - r1 if dlo > mp.mpf("0.5") else \
+                z * es1 * mp.expm1(dlo) * (1 + 1 / (e * es1)) / 2
+            p = mp.sqrt(qa * max(d2, 0) * max(d1, 0)) * ds
+            th, se = sh / ch, 1 / ch
+            pse = p * se
+            return [p * sh / (ch + 1), pse * th, pse * th ** 3, pse * th * se * se,
+                    pse * se * th * th]
+
+        J = _cc(f, 5, tol)
     else:
+        L = r2 - r1
         if inside:
             pc = mp.sqrt(max(-qc, 0))
+            v0 = 2 / mp.pi * mp.asin(mp.sqrt(-r1 / L))
+            w = 1 - v0
+            ph0 = mp.pi * v0 / 2
 
-            def f(r, dlo, dhi):
-                p = mp.sqrt(qa * dhi * (r - r1))
-                return [(p - pc) / r if r != 0 else mp.mpf(0)]
+            def f(v, om, sp, s2, c2):
+                # r = r1 + L sin^2(ph) = L sin(ph - ph0) sin(ph + ph0), ph = ph0 + pi w v/2;
+                # (p - pc)/r = qa (r2 + r1 - r)/(p + pc) without cancellation
+                ph = ph0 + mp.pi * w * v / 2
+                r = L * mp.sin(mp.pi * w * v / 2) * mp.sin(ph + ph0)
+                dr = L * mp.pi * mp.sin(2 * ph) * w / 2
+                p = mp.sqrt(qa) * L * mp.sin(2 * ph) / 2
+                if p + pc == 0:          # on the edge, at the field point
+                    return [mp.sqrt(qa) * L * mp.pi * w]
+                return [qa * (r2 + r1 - r) / (p + pc) * dr]
 
-            J1 = _ts(f, 0, r2, 1, n_tol)[0] + (pc * mp.log(r2) if pc != 0 else 0)
+            J1 = _cc(f, 1, tol)[0] + (pc * mp.log(r2) if pc != 0 else 0)
             J = [J1, pc, 2 * pc / 3, pc / 3, mp.mpf(0)]
         else:
-            def f(r, dlo, dhi):
-                return [mp.sqrt(qa * dhi * dlo) / r]
+            cm = cosmap(r1, r2, 0)
 
-            J = [_ts(f, r1, r2, 1, n_tol)[0], 0, 0, 0, 0]
+            def f(*node):
+                d1, d2, dr = cm(*node)
+                return [mp.sqrt(qa * d1 * d2) / (r1 + d1) * dr]
+
+            J = [_cc(f, 1, tol)[0], 0, 0, 0, 0]
     return J, c, s
 
 
 def _angular(a, b, x, y, z, nu, tol):
-    def g(theta, dlo, dhi):
+    """The stress as an integral over the direction theta of the ray from the field point,
+    of radial integrals along it (s = asinh(r/z), R^2 = r^2 + z^2, p the pressure):
+
+        J1 = int p r/(R(R+z)) dr = int p tanh(s/2) ds      J2 = int p z r/R^3 dr
+        J3 = int p z r^3/R^5 dr     J4 = int p z^3 r/R^5 dr     J5 = int p z^2 r^2/R^5 dr
+    """
+    k = 1 - 2 * nu
+
+    def g(theta, *ends):
         res = _radial(a, b, x, y, z, theta, tol / 10)
         if res is None:
             return [mp.mpf(0)] * 6
         (J1, J2, J3, J4, J5), c, s = res
         c2, s2, cs = c * c, s * s, c * s
-        k = 1 - 2 * nu
         return [k * ((c2 - s2) * J1 + s2 * J2) - 3 * c2 * J3,
                 k * (-(c2 - s2) * J1 + c2 * J2) - 3 * s2 * J3,
                 -3 * J4,
@@ -174,39 +290,60 @@ def _angular(a, b, x, y, z, nu, tol):
 
     qc = (x / a) ** 2 + (y / b) ** 2 - 1
     total = [mp.mpf(0)] * 6
-    if qc <= 0:
-        # full circle: break at the axis directions and the inward/outward normals
-        breaks = {mp.mpf(0), mp.pi / 2, mp.pi, 3 * mp.pi / 2, 2 * mp.pi}
+    if qc <= 0 and b * 4 >= a and qc <= mp.mpf("-0.1"):
+        # well inside a moderate ellipse: the integrand is analytic and periodic in theta,
+        # the trapezoid rule converges geometrically
+        n, prev, vals = 32, None, {}
+        nmax = 4096
+        while True:
+            step = nmax // n
+            for j in range(n):
+                if j * step not in vals:
+                    vals[j * step] = g(2 * mp.pi * j / n)
+            est = [sum(vals[j * step][i] for j in range(n)) / n * 2 * mp.pi for i in range(6)]
+            if prev is not None:
+                diff = max(abs(e - p) for e, p in zip(est, prev))
+                if diff <= tol or diff * diff <= tol * mp.mpf("1e-2") or n >= nmax:
+                    total = est
+                    break
+            prev = est
+            n *= 2
+    elif qc <= 0:
+        # near the edge, or a long ellipse: the integrand has narrow features at the
+        # directions tangent to the edge (normal +- pi/2); tanh-sinh on pieces ending there
         nx, ny = x / a ** 2, y / b ** 2
-        if nx != 0 or ny != 0:
-            tn = mp.atan2(ny, nx) % (2 * mp.pi)
-            breaks |= {(tn + k * mp.pi / 2) % (2 * mp.pi) for k in range(4)}
-        br = sorted(breaks)
+        tn = mp.atan2(ny, nx) if (nx != 0 or ny != 0) else mp.pi / 2
+        br = [tn + j * mp.pi / 2 for j in range(5)]
         for lo, hi in zip(br[:-1], br[1:]):
-            if hi - lo > mp.mpf(10) ** (-mp.mp.dps + 3):
-                part = _ts(g, lo, hi, 6, tol)
-                total = [t + p for t, p in zip(total, part)]
+            part = _ts(g, lo, hi, 6, tol)
+            total = [t + p for t, p in zip(total, part)]
     else:
-        # cone of directions that meet the ellipse: tangent directions from (x, y)
-        # (x + r c)^2/a^2 + (y + r s)^2/b^2 = 1 has a double root when
-        # (x c/a^2 + y s/b^2)^2 = qc (c^2/a^2 + s^2/b^2)
+        # outside: the cone of directions that meet the ellipse, between the two tangents
+        # A2 c^2 + 2 B2 c s + C2 s^2 = 0 (double root of the chord equation)
         A2 = (x / a ** 2) ** 2 - qc / a ** 2
         B2 = x * y / (a * a * b * b)
         C2 = (y / b ** 2) ** 2 - qc / b ** 2
-        # A2 c^2 + 2 B2 c s + C2 s^2 = 0; parametrise by the angle
-        t0 = mp.atan2(-y, -x)            # direction to the centre
-        # solve in tan of (theta - t0) numerically-exactly via the quadratic form rotated
+        t0 = mp.atan2(-y, -x)            # towards the centre, inside the cone
         ct, st = mp.cos(t0), mp.sin(t0)
-        # theta = t0 + phi: c = ct cos phi - st sin phi, s = st cos phi + ct sin phi
+        # theta = t0 + phi, P + 2 Qh tan(phi) + R tan(phi)^2 = 0
         P = A2 * ct * ct + 2 * B2 * ct * st + C2 * st * st
         Qh = -A2 * ct * st + B2 * (ct * ct - st * st) + C2 * st * ct
         R = A2 * st * st - 2 * B2 * ct * st + C2 * ct * ct
-        # P + 2 Qh tan(phi) + R tan^2(phi) = 0
         dq = mp.sqrt(Qh * Qh - P * R)
-        roots = sorted([mp.atan((-Qh - dq) / R), mp.atan((-Qh + dq) / R)])
-        lo, hi = t0 + roots[0], t0 + roots[1]
-        mid = t0
-        for l, h in ((lo, mid), (mid, hi)):
+        ends = []
+        for T in ((-Qh - dq) / R, (-Qh + dq) / R):
+            # the line t0 + atan(T) (mod pi): the tangent is the direction along it that
+            # points towards the ellipse (x c/a^2 + y s/b^2 < 0)
+            th = t0 + mp.atan(T)
+            if x * mp.cos(th) / a ** 2 + y * mp.sin(th) / b ** 2 > 0:
+                th += mp.pi
+            while th > t0 + mp.pi:
+                th -= 2 * mp.pi
+            while th < t0 - mp.pi:
+                th += 2 * mp.pi
+            ends.append(th)
+        lo, hi = min(ends), max(ends)
+        for l, h in ((lo, t0), (t0, hi)):
             part = _ts(g, l, h, 6, tol)
             total = [t + p for t, p in zip(total, part)]
     return [t / (2 * mp.pi) for t in total]

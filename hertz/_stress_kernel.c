@@ -1,0 +1,770 @@
+/* The stress field below a Hertz contact, in closed form, and its maxima (pure C99).
+ *
+ * Point contact. The Hertz pressure p = p0 sqrt(1 - x^2/a^2 - y^2/b^2) acting on the
+ * half-space z >= 0 gives (Boussinesq's potentials, Johnson, Contact Mechanics, sec. 3.2,
+ * eqs. 3.7 and 3.11-3.14 for normal load; Love 1929):
+ *
+ *   sxx = [2 nu phi_z - z phi_xx - (1-2nu) psi_xx] / 2pi     szz = [phi_z - z phi_zz] / 2pi
+ *   syy = [2 nu phi_z - z phi_yy - (1-2nu) psi_yy] / 2pi     sxz = -z phi_xz / 2pi
+ *   sxy = -[(1-2nu) psi_xy + z phi_xy] / 2pi                 syz = -z phi_yz / 2pi
+ *
+ * with phi = int p / rho dA, psi = int p ln(rho + z) dA, psi_z = phi. For the Hertz pressure
+ * phi is the potential of a flattened ellipsoid (Johnson eq. 3.53; Thomas & Hoersch 1930):
+ *
+ *   phi = (pi a b p0 / 2) int_l^inf [1 - x^2/(a^2+w) - y^2/(b^2+w) - z^2/w] dw / D(w),
+ *   D(w) = sqrt((a^2+w)(b^2+w) w),
+ *
+ * l = lambda the ellipsoidal coordinate of the point (the positive root of
+ * x^2/(a^2+l) + y^2/(b^2+l) + z^2/l = 1). Its derivatives need the integrals
+ * I_A = int_l^inf dw/((a^2+w) D) = (2/3) R_D(l, B, A), I_B = (2/3) R_D(l, A, B) and
+ * I_w = int_l^inf dw/(w D) = 2/D(l) - I_A - I_B (A = a^2 + l, B = b^2 + l; R_D is
+ * Carlson's integral, DLMF 19.16.5, computed by duplication, DLMF 19.36.2; the last
+ * identity is DLMF 19.21.10) and the derivatives of l (implicit differentiation).
+ *
+ * psi_xx, psi_yy, psi_xy, which carry the (1-2nu) terms, are not derived from a potential
+ * in the sources; they are obtained here from psi_x = -int_z^inf phi_x dz' by exchanging
+ * the order of integration (z' and w): with t(w)^2 = w (1 - x^2/(a^2+w) - y^2/(b^2+w)),
+ *
+ *   psi_x = pi a b p0 x int_l^inf (t(w) - z) dw / ((a^2+w) D(w)),
+ *
+ * and t/D = sqrt(P(w))/((a^2+w)(b^2+w)), P(w) = (a^2+w)(b^2+w) - x^2 (b^2+w) - y^2 (a^2+w)
+ * a quadratic: the second derivatives of psi are elementary. With P = (w - w1)(w - w2),
+ * X = l - w2, Y = l - w1, sigma = sqrt(XY), q = sqrt X + sqrt Y and E_p = p + sigma,
+ *
+ *   g(p) = int_0^inf dt / ((t + p) sqrt((t + X)(t + Y))) = 2 R_C(E_p^2, p q^2)
+ *        = (2 / E_p) T(eps_p),      eps_p = (p - X)(p - Y) / E_p^2,
+ *
+ * T(e) = artanh(sqrt e)/sqrt e (e > 0), arctan(sqrt(-e))/sqrt(-e) (e < 0), and
+ * eps_A = x^2 (a^2 - b^2) / E_A^2, eps_B = -y^2 (a^2 - b^2) / E_B^2 exactly. The
+ * integrals needed are g(A), g(B), -g'(A), -g'(B) and the divided difference
+ * -(g(A) - g(B))/(A - B); written with S(e) = (T(e) - 1)/e the latter is
+ * 2/(E_A E_B) - 2 x^2 S(eps_A)/E_A^3 - 2 y^2 S(eps_B)/E_B^3, with no division by
+ * a - b, so the circle a = b and a -> b need no special case. The surface stresses
+ * of Johnson sec. 3.5 / Sackfield & Hills 1983 (J. Strain Anal. 18, 101 and 195) are the
+ * limits z -> 0 of the same expressions, which stay finite there: every term is written
+ * with zeta = z / sqrt(l) (= p/p0 on the contact, 0 outside it) instead of z and l.
+ *
+ * The ellipsoidal coordinate is found from a form of the cubic in which every
+ * coefficient is a sum of positive terms (see solve_v), so that it keeps full relative
+ * precision when l ~ z^2 is tiny (near the surface) or huge (far away).
+ *
+ * Line contact (plane strain): McEwen 1949 (Phil. Mag. 40, 454), Johnson eq. 4.49,
+ * written with the complex square root m + i n = sqrt(b^2 - (x - i z)^2) and
+ * m - z = Re b^2 / (m + z + i (n + x)), free of cancellation at depth.
+ *
+ * Maxima on the axis: the axis stresses are principal there; their z-derivatives are
+ * elementary once the R_D are known, and the maxima are found by Newton's method on the
+ * derivative, bracketed. Orthogonal shear: Lundberg & Palmgren 1947 (closed form in the
+ * root t of (b/a)^2 = (t^2 - 1)(2t - 1)).
+ *
+ * Everything was verified against an mpmath quadrature of Boussinesq's and Flamant's
+ * solutions (tests/reference_stress.py).
+ */
+#include <math.h>
+
+#include "_stress_kernel.h"
+
+#define PI 3.14159265358979323846
+
+/* ------------------------------------------------------------------ Carlson R_D */
+
+/* R_D(x, y, z) and R_D(x, z, y) (DLMF 19.16.5), x >= 0, y, z > 0, by Carlson's
+   duplication (DLMF 19.36.2, Carlson 1995 Numer. Algorithms 10, 13) run once for both:
+   the duplicated triple is symmetric, only the sums and the final series differ. */
+static double rd_series(double x, double y, double z)
+{
+    double A = (x + y + 3.0 * z) / 5.0;
+    double X = (A - x) / A, Y = (A - y) / A, Z = -(X + Y) / 3.0;
+    double XY = X * Y, Z2 = Z * Z;
+    double E2 = XY - 6.0 * Z2, E3 = (3.0 * XY - 8.0 * Z2) * Z, E4 = 3.0 * (XY - Z2) * Z2;
+    double E5 = XY * Z2 * Z;
+    double s = 1.0 - 3.0 / 14.0 * E2 + E3 / 6.0 + 9.0 / 88.0 * E2 * E2 - 3.0 / 22.0 * E4
+               - 9.0 / 52.0 * E2 * E3 + 3.0 / 26.0 * E5;
+    return s / (A * sqrt(A));
+}
+
+static void rd_pair(double x, double y, double z, double *rd_xyz, double *rd_xzy)
+{
+    double sum_z = 0.0, sum_y = 0.0, fac = 1.0;
+    int i;
+    for (i = 0; i < 100; i++) {
+        double m = (x + y + z) / 3.0;
+        double dev = fmax(fabs(x - m), fmax(fabs(y - m), fabs(z - m)));
+        double sx, sy, sz, lam;
+        if (dev <= 1.5e-3 * m)
+            break;
+        sx = sqrt(x);
+        sy = sqrt(y);
+        sz = sqrt(z);
+        lam = sx * (sy + sz) + sy * sz;
+        sum_z += fac / (sz * (z + lam));
+        sum_y += fac / (sy * (y + lam));
+        fac *= 0.25;
+        x = 0.25 * (x + lam);
+        y = 0.25 * (y + lam);
+        z = 0.25 * (z + lam);
+    }
+    *rd_xyz = 3.0 * sum_z + fac * rd_series(x, y, z);
+    *rd_xzy = 3.0 * sum_y + fac * rd_series(x, z, y);
+}
+
+/* ------------------------------------------------------------------ elementary parts */
+
+/* S(e) = (T(e) - 1)/e, T(e) = artanh(sqrt e)/sqrt e (e > 0) or arctan(sqrt -e)/sqrt -e
+   (e < 0), for e < 1; om = 1 - e, given separately with full precision. Near e = 0 T - 1
+   cancels; there the half-angle formulas of artanh and arctan, which give the same
+   recurrence for both signs,
+       S(e) = (2 S(e1)/(1 + c) + 1) / (1 + c)^2,  c = sqrt(om), e1 = e/(1+c)^2,
+       1 - e1 = 2c/(1 + c),
+   reduce |e| below 0.1 in at most three steps, and a Taylor series finishes. */
+static double s_func(double e, double om)
+{
+    double t, T, c, acc = 0.0, mul = 1.0, s;
+    if (e > 0.75) {
+        t = sqrt(e);
+        T = log((1.0 + t) * (1.0 + t) / om) / (2.0 * t);   /* artanh t = ln((1+t)/(1-t))/2 */
+        return (T - 1.0) / e;
+    }
+    if (e < -2.0) {
+        t = sqrt(-e);
+        T = atan(t) / t;
+        return (T - 1.0) / e;
+    }
+    while (fabs(e) >= 0.1) {
+        c = sqrt(om);
+        /* S(e) = acc + mul S(e) becomes acc + mul (1/(1+c)^2 + 2/(1+c)^3 S(e1)) */
+        acc += mul / ((1.0 + c) * (1.0 + c));
+        mul *= 2.0 / ((1.0 + c) * (1.0 + c) * (1.0 + c));
+        e = e / ((1.0 + c) * (1.0 + c));
+        om = 2.0 * c / (1.0 + c);
+    }
+    /* sum_k e^k / (2k + 3), k = 0..15 */
+    s = 1.0 / 33.0;
+    s = 1.0 / 31.0 + e * s;
+    s = 1.0 / 29.0 + e * s;
+    s = 1.0 / 27.0 + e * s;
+    s = 1.0 / 25.0 + e * s;
+    s = 1.0 / 23.0 + e * s;
+    s = 1.0 / 21.0 + e * s;
+    s = 1.0 / 19.0 + e * s;
+    s = 1.0 / 17.0 + e * s;
+    s = 1.0 / 15.0 + e * s;
+    s = 1.0 / 13.0 + e * s;
+    s = 1.0 / 11.0 + e * s;
+    s = 1.0 / 9.0 + e * s;
+    s = 1.0 / 7.0 + e * s;
+    s = 1.0 / 5.0 + e * s;
+    s = 1.0 / 3.0 + e * s;
+    return acc + mul * s;
+}
+
+/* The positive root v of  v (K + v)(Y0 + v) = z2 (A0 + v)(B0 + v)  with K >= 0, Y0 > 0,
+   A0 >= Y0, B0 >= K, z2 > 0. This is the equation for the ellipsoidal coordinate
+   l = U0 + v, shifted so that every factor is a sum of non-negative terms: the root keeps
+   full relative precision. phi(v) = v (K+v)(Y0+v) / ((A0+v)(B0+v)) is increasing, with
+   1 <= d ln phi / d ln v <= 3; Newton's method on ln phi in ln v, from the geometric mean
+   of two bounds (roots of quadratics with (Y0+v)/(A0+v) replaced by its bounds 1 and
+   Y0/A0), bracketed by them. */
+static double quad_root(double K, double B0, double c2)
+{
+    /* positive root of v (K + v) = c2 (B0 + v) */
+    double c = K - c2, D = hypot(c, 2.0 * sqrt(c2 * B0));
+    return c >= 0.0 ? 2.0 * c2 * B0 / (c + D) : (D - c) / 2.0;
+}
+
+static double solve_v(double K, double Y0, double A0, double B0, double z2)
+{
+    double lo = quad_root(K, B0, z2), hi = quad_root(K, B0, z2 * (A0 / Y0));
+    double v = sqrt(lo * hi);
+    int i;
+    if (!(hi > lo))
+        return lo;
+    for (i = 0; i < 60; i++) {
+        double q = (z2 / v) * ((A0 + v) / (K + v)) * ((B0 + v) / (Y0 + v));
+        double dl = 1.0 / v + 1.0 / (K + v) + 1.0 / (Y0 + v) - 1.0 / (A0 + v) - 1.0 / (B0 + v);
+        double t = q - 1.0, g, d, vn;
+        if (fabs(t) < 1e-2)      /* g = ln q */
+            g = t * (1.0 - t * (0.5 - t * (1.0 / 3.0 - t * (0.25 - t * (0.2 - t / 6.0)))));
+        else
+            g = log(q);
+        if (g > 0.0)             /* phi(v) < z2: v below the root */
+            lo = v;
+        else
+            hi = v;
+        d = g / (v * dl);        /* Newton step in ln v */
+        if (fabs(d) < 1e-2)
+            vn = v * (1.0 + d * (1.0 + d * (0.5 + d * (1.0 / 6.0 + d / 24.0))));
+        else
+            vn = v * exp(d);
+        if (!(vn > lo && vn < hi))
+            vn = sqrt(lo * hi);
+        if (fabs(vn - v) <= 4e-16 * v || !(hi > lo))
+            return vn;
+        v = vn;
+    }
+    return v;
+}
+
+/* ------------------------------------------------------------------ 1 - x^2/a^2 - y^2/b^2 */
+
+/* Error-free transformations (Dekker 1971, Knuth): no fused multiply-add needed. */
+static void two_prod(double a, double b, double *p, double *e)
+{
+    const double split = 134217729.0;    /* 2^27 + 1 */
+    double ca = split * a, cb = split * b;
+    double ah = ca - (ca - a), al = a - ah, bh = cb - (cb - b), bl = b - bh;
+    *p = a * b;
+    *e = ((ah * bh - *p) + ah * bl + al * bh) + al * bl;
+}
+
+static void two_sum(double a, double b, double *s, double *e)
+{
+    double bb;
+    *s = a + b;
+    bb = *s - a;
+    *e = (a - (*s - bb)) + (b - bb);
+}
+
+/* F0 = 1 - x^2/a^2 - y^2/b^2 with a relative error of a few ulp even where it cancels
+   (near the edge of the contact), in double-double arithmetic: the stresses at the surface
+   depend on sqrt(F0), so a rounding of F0 at 1e-16 would be an error of 1e-8 there. */
+static double edge_distance(double a, double b, double x, double y)
+{
+    double qx = x / a, qy = y / b, ph, pl, rx, ry, sx, ex, sy, ey, t, te, u, ue;
+    two_prod(qx, a, &ph, &pl);
+    rx = ((x - ph) - pl) / a;                  /* x/a = qx + rx */
+    two_prod(qy, b, &ph, &pl);
+    ry = ((y - ph) - pl) / b;
+    two_prod(qx, qx, &sx, &ex);
+    ex += 2.0 * qx * rx;
+    two_prod(qy, qy, &sy, &ey);
+    ey += 2.0 * qy * ry;
+    two_sum(1.0, -sx, &t, &te);
+    two_sum(t, -sy, &u, &ue);
+    return u + (ue + te - ex - ey);
+}
+
+/* ------------------------------------------------------------------ the point contact */
+
+/* Stress at (x, y, z) for a = 1, b = k <= 1, normalised coordinates; F0 = 1 - x^2 - y^2/k^2
+   computed accurately from the original coordinates. */
+static void point_stress(double k, double nu, double x, double y, double z, double F0,
+                         double out[6])
+{
+    const double be = k * k, d = (1.0 - k) * (1.0 + k);       /* b^2, a^2 - b^2 */
+    const double x2 = x * x, y2 = y * y, r2 = x2 + y2, z2 = z * z;
+    double D, e1, e2, f1, f2, mw1, c0, w2, K, U0, X0, Y0, v, u, X, Y, A, B, su, zeta;
+    double sAB, Q, H, g, gx, szz, sxz, syz, zIA, zIB, zIw;
+    double sg, q2, EA, EB, epsA, epsB, SA, SB, TA, T2A, AmS;
+    double K1, K2, K3, Kx, Ky, c1 = 1.0 - 2.0 * nu;
+
+    /* Roots of P: with E = a^2 + w the roots e1 <= e2 of E^2 - (d + r2) E + x^2 d, with
+       F = b^2 + w the roots -f1 <= f2 of F^2 - (r2 - d) F - y^2 d; w1 = e1 - 1 = -(b^2+f1),
+       w2 = e2 - 1 = f2 - b^2. D is their common discriminant. */
+    D = hypot(r2 - d, 2.0 * fabs(y) * sqrt(d));
+    e2 = 0.5 * (d + r2 + D);
+    e1 = e2 > 0.0 ? x2 * d / e2 : 0.0;
+    if (r2 >= d) {
+        f2 = 0.5 * (r2 - d + D);
+        f1 = f2 > 0.0 ? y2 * d / f2 : 0.0;
+    } else {
+        f1 = 0.5 * (d - r2 + D);
+        f2 = y2 * d / f1;
+    }
+    (void)f2;
+    mw1 = e1 <= 0.5 * d ? 1.0 - e1 : be + f1;          /* -w1, in [b^2, 1] */
+    c0 = be * F0;                                        /* a^2 b^2 (1 - x^2/a^2 - y^2/b^2) */
+    w2 = -c0 / mw1;                                      /* w1 w2 = c0 */
+    if (w2 <= 0.0) {       /* above the contact: l = v, X = v + |w2| */
+        U0 = 0.0;
+        X0 = K = -w2;
+    } else {               /* outside it: l = w2 + v, X = v */
+        U0 = K = w2;
+        X0 = 0.0;
+    }
+    Y0 = U0 + mw1;
+    v = z2 > 0.0 ? solve_v(K, Y0, 1.0 + U0, be + U0, z2) : 0.0;
+    u = U0 + v;
+    X = X0 + v;
+    Y = Y0 + v;
+    A = 1.0 + u;
+    B = be + u;
+    su = sqrt(u);
+    /* zeta = z / sqrt(l): on the surface p/p0 inside the contact, 0 outside */
+    zeta = u > 0.0 ? z / su : sqrt(fmax(F0, 0.0));
+    sAB = sqrt(A * B);
+    Q = k / sAB;
+    H = zeta * zeta + u * (x2 / (A * A) + y2 / (B * B));
+    if (H > 0.0) {
+        g = Q / H;
+        szz = -g * zeta * zeta * zeta;
+        sxz = -g * x * zeta * zeta * su / A;
+        syz = -g * y * zeta * zeta * su / B;
+        gx = g * zeta * u;
+    } else {               /* the edge of the contact on the surface */
+        szz = sxz = syz = gx = 0.0;
+    }
+    if (z > 0.0) {
+        double rda, rdb;
+        rd_pair(u, B, A, &rda, &rdb);
+        zIA = z * (2.0 / 3.0) * rda;
+        zIB = z * (2.0 / 3.0) * rdb;
+        zIw = zeta * (2.0 / sAB - su * (2.0 / 3.0) * (rda + rdb));
+    } else {
+        zIA = zIB = 0.0;
+        zIw = u > 0.0 ? 0.0 : 2.0 * zeta / sAB;
+    }
+    /* the (1 - 2 nu) terms */
+    sg = sqrt(X * Y);
+    q2 = X + Y + 2.0 * sg;
+    EA = A + sg;
+    EB = B + sg;
+    epsA = x2 * d / (EA * EA);
+    epsB = -y2 * d / (EB * EB);
+    SA = s_func(epsA, A * q2 / (EA * EA));
+    SB = s_func(epsB, B * q2 / (EB * EB));
+    TA = 1.0 + epsA * SA;
+    T2A = EA * EA / (A * q2) - SA;                  /* 1/(1 - eps) - S */
+    AmS = (e1 * X + A * e2) / EA;                   /* A - sigma */
+    K1 = 2.0 * TA / EA;                             /* int dw / (A sqrt P) */
+    K2 = (2.0 / EA) * (TA / EA - q2 * AmS * T2A / (2.0 * EA * EA * EA));   /* 1/(A^2 sqrt P) */
+    K3 = 2.0 / (EA * EB) - 2.0 * x2 * SA / (EA * EA * EA) - 2.0 * y2 * SB / (EB * EB * EB);
+    /* psi_xx / (pi a b p0) = Kx - z I_A; psi_yy from psi_xx + psi_yy = -phi_z (psi is
+       harmonic): its own integrals are of order 1/b^2 and cancel for a long ellipse */
+    Kx = K1 - 2.0 * x2 * K2 - y2 * K3;
+    Ky = 2.0 * zeta / sAB - Kx;
+    out[0] = k * ((1.0 - nu) * zIA - nu * zIw) - gx * x2 / (A * A) - c1 * 0.5 * k * Kx;
+    out[1] = k * ((1.0 - nu) * zIB - nu * zIw) - gx * y2 / (B * B) - c1 * 0.5 * k * Ky;
+    out[2] = szz;
+    out[3] = syz;
+    out[4] = sxz;
+    out[5] = c1 * 0.5 * k * x * y * K3 - gx * x * y / (A * B);
+}
+
+static int bad_nu(double nu)
+{
+    return !(nu > -1.0 && nu <= 0.5);
+}
+
+static void fill_nan(double *out, int n)
+{
+    int i;
+    for (i = 0; i < n; i++)
+        out[i] = NAN;
+}
+
+int hertz_point_stress(double a, double b, double nu, double x, double y, double z,
+                       double out[6])
+{
+    int err = 0;
+    if (!(b > 0.0 && a >= b && a < INFINITY))
+        err = HERTZ_STRESS_EAXES;
+    else if (bad_nu(nu))
+        err = HERTZ_STRESS_ENU;
+    else if (!(fabs(x) < INFINITY && fabs(y) < INFINITY && fabs(z) < INFINITY))
+        err = HERTZ_STRESS_EPOINT;
+    else if (z < 0.0)
+        err = HERTZ_STRESS_EDEPTH;
+    if (err) {
+        fill_nan(out, 6);
+        return err;
+    }
+    point_stress(b / a, nu, x / a, y / a, z / a, edge_distance(a, b, x, y), out);
+    return 0;
+}
+
+/* ------------------------------------------------------------------ the z axis */
+
+/* The principal stresses on the z axis (normalised: a = 1, b = k) and their first and
+   second derivatives in z: s[i][0..2] for i = x, y, z. With s = z^2, A = 1 + s,
+   B = k^2 + s (Johnson sec. 3.5; REFERENCES):
+     szz = -k / sqrt(AB)
+     sxx = k [(1-nu) z I_A - nu z I_w - (1-2nu) / (sqrt A (sqrt A + sqrt B))]
+     syy = k [(1-nu) z I_B - nu z I_w - (1-2nu) / (sqrt B (sqrt A + sqrt B))]
+   z I_w = 2/sqrt(AB) - z I_A - z I_B, and d I_A/dz = -2 / (A sqrt(AB)) (the integrand at
+   the lower limit w = s), d I_B/dz = -2 / (B sqrt(AB)). */
+static void axis_stress(double k, double nu, double z, double s[3][3])
+{
+    const double be = k * k, c1 = 1.0 - 2.0 * nu, z2 = z * z;
+    const double A = 1.0 + z2, B = be + z2, rA = sqrt(A), rB = sqrt(B), sAB = rA * rB;
+    const double P = 1.0 / sAB, iA = 1.0 / A, iB = 1.0 / B, iAB = iA + iB;
+    double rda, rdb, IA, IB, JA[3], JB[3], W[3], Jw[3], hx[3], hy[3];
+    double P1, P1p, Np, Npp, Nx, Ny;
+    int i;
+    rd_pair(z2, B, A, &rda, &rdb);
+    IA = (2.0 / 3.0) * rda;
+    IB = (2.0 / 3.0) * rdb;
+    JA[0] = z * IA;
+    JA[1] = IA - 2.0 * z * P * iA;
+    JA[2] = P * iA * (-4.0 + 6.0 * z2 * iA + 2.0 * z2 * iB);
+    JB[0] = z * IB;
+    JB[1] = IB - 2.0 * z * P * iB;
+    JB[2] = P * iB * (-4.0 + 6.0 * z2 * iB + 2.0 * z2 * iA);
+    /* W = 2 / sqrt(AB) */
+    W[0] = 2.0 * P;
+    W[1] = -2.0 * z * P * iAB;
+    W[2] = 2.0 * P * (-iAB + z2 * iAB * iAB + 2.0 * z2 * (iA * iA + iB * iB));
+    for (i = 0; i < 3; i++)
+        Jw[i] = W[i] - JA[i] - JB[i];
+    /* h_x = 1/(A + sqrt(AB)), h_y = 1/(B + sqrt(AB)); (sqrt(AB))' = z (A+B)/sqrt(AB) */
+    P1 = (A + B) * P;
+    P1p = 4.0 * z * P - z * P1 * P * P * (A + B);
+    Np = z * (2.0 + P1);
+    Npp = 2.0 + P1 + z * P1p;
+    Nx = A + sAB;
+    Ny = B + sAB;
+    hx[0] = 1.0 / Nx;
+    hx[1] = -Np * hx[0] * hx[0];
+    hx[2] = (2.0 * Np * Np - Nx * Npp) * hx[0] * hx[0] * hx[0];
+    hy[0] = 1.0 / Ny;
+    hy[1] = -Np * hy[0] * hy[0];
+    hy[2] = (2.0 * Np * Np - Ny * Npp) * hy[0] * hy[0] * hy[0];
+    for (i = 0; i < 3; i++) {
+        s[0][i] = k * ((1.0 - nu) * JA[i] - nu * Jw[i] - c1 * hx[i]);
+        s[1][i] = k * ((1.0 - nu) * JB[i] - nu * Jw[i] - c1 * hy[i]);
+        s[2][i] = -k * W[i] / 2.0;
+    }
+}
+
+/* The three functions maximised on the axis, with first and second derivatives:
+   f[0] = (sxx - szz)/2, f[1] = (syy - szz)/2, f[2] = von Mises^2 (szz is the smallest
+   principal stress on the axis for every b/a and nu: checked numerically). */
+static void axis_targets(double k, double nu, double z, double f[3][3])
+{
+    double s[3][3], d[3][3];
+    int i, j;
+    axis_stress(k, nu, z, s);
+    for (i = 0; i < 3; i++) {
+        f[0][i] = 0.5 * (s[0][i] - s[2][i]);
+        f[1][i] = 0.5 * (s[1][i] - s[2][i]);
+    }
+    for (j = 0; j < 3; j++) {          /* differences xy, yz, zx */
+        int p = j, q = (j + 1) % 3;
+        for (i = 0; i < 3; i++)
+            d[j][i] = s[p][i] - s[q][i];
+    }
+    f[2][0] = f[2][1] = f[2][2] = 0.0;
+    for (j = 0; j < 3; j++) {
+        f[2][0] += 0.5 * d[j][0] * d[j][0];
+        f[2][1] += d[j][0] * d[j][1];
+        f[2][2] += d[j][1] * d[j][1] + d[j][0] * d[j][2];
+    }
+}
+
+/* The quintic Hermite interpolant on [0, 1] of values and first and second derivatives
+   (the derivatives scaled by h, h^2) at both ends: coefficients c[0..5]. */
+static void hermite5(double f0, double g0, double k0, double f1, double g1, double k1,
+                     double c[6])
+{
+    double F, G, Hh;
+    c[0] = f0;
+    c[1] = g0;
+    c[2] = 0.5 * k0;
+    F = f1 - f0 - c[1] - c[2];
+    G = g1 - c[1] - 2.0 * c[2];
+    Hh = k1 - 2.0 * c[2];
+    c[3] = 10.0 * F - 4.0 * G + 0.5 * Hh;
+    c[4] = -15.0 * F + 7.0 * G - Hh;
+    c[5] = 6.0 * F - 3.0 * G + 0.5 * Hh;
+}
+
+static double hermite_d1(const double c[6], double t)
+{
+    return c[1] + t * (2.0 * c[2] + t * (3.0 * c[3] + t * (4.0 * c[4] + t * 5.0 * c[5])));
+}
+
+static double hermite_d2(const double c[6], double t)
+{
+    return 2.0 * c[2] + t * (6.0 * c[3] + t * (12.0 * c[4] + t * 20.0 * c[5]));
+}
+
+/* Root of p' in (lo, hi) where p'(lo) > 0 >= p'(hi): bracketed Newton. */
+static double hermite_root(const double c[6], double lo, double hi)
+{
+    double t = 0.5 * (lo + hi);
+    int i;
+    for (i = 0; i < 60; i++) {
+        double d1 = hermite_d1(c, t), d2 = hermite_d2(c, t), tn;
+        if (d1 > 0.0)
+            lo = t;
+        else
+            hi = t;
+        tn = d2 < 0.0 ? t - d1 / d2 : 0.5 * (lo + hi);
+        if (!(tn > lo && tn < hi))
+            tn = 0.5 * (lo + hi);
+        if (fabs(tn - t) < 1e-14)
+            return tn;
+        t = tn;
+    }
+    return t;
+}
+
+/* Local maximum of target i near zg in [lo, hi] by Newton's method on f' = 0 (bisection
+   when a step leaves the interval or f'' >= 0); sign_lo says that f' > 0 is known at lo
+   and f' < 0 at hi. Returns the value at the maximum (extrapolated to the last Newton
+   point, error of order step^3) and its depth in *zmax. */
+static double refine_max(double k, double nu, int i, double zg, double lo, double hi,
+                         double *zmax)
+{
+    double fz[3][3], best = -INFINITY, bz = zg;
+    int it;
+    for (it = 0; it < 60; it++) {
+        double step, zn;
+        axis_targets(k, nu, zg, fz);
+        if (fz[i][0] > best) {
+            best = fz[i][0];
+            bz = zg;
+        }
+        if (fz[i][1] > 0.0)
+            lo = zg;
+        else
+            hi = zg;
+        if (fz[i][2] < 0.0) {
+            step = -fz[i][1] / fz[i][2];
+            zn = zg + step;
+            if (fabs(step) <= 1e-6 * zg || fabs(step) <= 1e-300) {
+                *zmax = zn;
+                return fz[i][0] + 0.5 * step * fz[i][1];
+            }
+        } else {
+            zn = fz[i][1] > 0.0 ? hi : lo;
+        }
+        if (!(zn > lo && zn < hi))
+            zn = 0.5 * (lo + hi);
+        if (hi - lo <= 1e-15 * hi)
+            break;
+        zg = zn;
+    }
+    *zmax = bz;
+    return best;
+}
+
+#define AXIS_GRID 6
+#define AXIS_SUB 8
+
+/* Largest value of each target on the z axis: value and depth (normalised, b = k). The
+   targets are tabulated with their first two derivatives on a grid of depths; in every
+   cell the quintic Hermite interpolant locates the candidate maxima (also a maximum and a
+   minimum in one cell, which the signs of f' at the grid points would miss), each is
+   refined by Newton's method and compared with the value at the surface. */
+static void axis_maxima(double k, double nu, double val[3], double dep[3])
+{
+    static const double grid[AXIS_GRID] = {0.0, 0.2, 0.45, 0.7, 1.0, 1.4};
+    double z[AXIS_GRID + 8], f[AXIS_GRID + 8][3][3];
+    int n = AXIS_GRID, j, i, m;
+    for (j = 0; j < AXIS_GRID; j++) {
+        z[j] = grid[j] * k;
+        axis_targets(k, nu, z[j], f[j]);
+    }
+    /* extend the grid while a target still increases at its deepest point */
+    while (n < AXIS_GRID + 8 && (f[n - 1][0][1] > 0.0 || f[n - 1][1][1] > 0.0
+                                 || f[n - 1][2][1] > 0.0)) {
+        z[n] = 1.5 * z[n - 1];
+        axis_targets(k, nu, z[n], f[n]);
+        n++;
+    }
+    for (i = 0; i < 3; i++) {
+        double best = f[0][i][0], bz = 0.0;   /* the surface */
+        for (j = 0; j + 1 < n; j++) {
+            double h = z[j + 1] - z[j], c[6], prev, t0 = 0.0;
+            hermite5(f[j][i][0], h * f[j][i][1], h * h * f[j][i][2],
+                     f[j + 1][i][0], h * f[j + 1][i][1], h * h * f[j + 1][i][2], c);
+            prev = c[1];
+            for (m = 1; m <= AXIS_SUB; m++) {
+                double t1 = (double)m / AXIS_SUB;
+                double d1 = m == AXIS_SUB ? h * f[j + 1][i][1] : hermite_d1(c, t1);
+                if (prev > 0.0 && d1 <= 0.0) {
+                    double tg = m == AXIS_SUB && d1 == 0.0 ? 1.0 : hermite_root(c, t0, t1);
+                    double zm, v = refine_max(k, nu, i, z[j] + h * tg, z[j], z[j + 1], &zm);
+                    if (v > best) {
+                        best = v;
+                        bz = zm;
+                    }
+                }
+                prev = d1;
+                t0 = t1;
+            }
+        }
+        val[i] = best;
+        dep[i] = bz;
+    }
+}
+
+/* t > 1 with (t^2 - 1)(2t - 1) = k^2, returned as t - 1 (Newton from the right on the
+   convex 2e^3 + 5e^2 + 2e - k^2). */
+static double lp_root(double k)
+{
+    double e = 0.5 * k * k;
+    int i;
+    for (i = 0; i < 60; i++) {
+        double f = ((2.0 * e + 5.0) * e + 2.0) * e - k * k;
+        double fp = (6.0 * e + 10.0) * e + 2.0;
+        double en = e - f / fp;
+        if (!(en < e))
+            break;
+        e = en;
+    }
+    return e;
+}
+
+int hertz_subsurface(double a, double b, double nu, double out[12])
+{
+    double k, val[3], dep[3], e, t;
+    int i;
+    if (!(b > 0.0 && a >= b && a < INFINITY)) {
+        fill_nan(out, 12);
+        return HERTZ_STRESS_EAXES;
+    }
+    if (bad_nu(nu)) {
+        fill_nan(out, 12);
+        return HERTZ_STRESS_ENU;
+    }
+    k = b / a;
+    axis_maxima(k, nu, val, dep);
+    i = val[1] > val[0] ? 1 : 0;
+    out[0] = val[i];
+    out[1] = dep[i] * a;
+    out[2] = sqrt(val[2]);
+    out[3] = dep[2] * a;
+    /* orthogonal shear (Lundberg & Palmgren 1947), in units of b */
+    e = lp_root(k);
+    t = 1.0 + e;
+    out[4] = sqrt(1.0 + 2.0 * e) / (2.0 * t * (t + 1.0));
+    out[5] = b * t / (t + 1.0) * sqrt((2.0 * t + 1.0) / (1.0 + 2.0 * e));
+    out[6] = b / ((t + 1.0) * sqrt(1.0 + 2.0 * e));
+    /* surface tension: sxx at (a, 0), (1 - 2nu) (b/a) S(1 - b^2/a^2) (Johnson sec. 3.5) */
+    out[7] = (1.0 - 2.0 * nu) * k * s_func((1.0 - k) * (1.0 + k), k * k);
+    out[8] = a;
+    out[9] = 0.0;
+    out[10] = out[11] = NAN;
+    return 0;
+}
+
+/* ------------------------------------------------------------------ line contact */
+
+int hertz_line_stress(double b, double nu, double x, double z, double out[4])
+{
+    double X, Z, re, im, md, m, n, den, d, mn2;
+    if (!(b > 0.0 && b < INFINITY)) {
+        fill_nan(out, 4);
+        return HERTZ_STRESS_EAXES;
+    }
+    if (bad_nu(nu)) {
+        fill_nan(out, 4);
+        return HERTZ_STRESS_ENU;
+    }
+    if (!(fabs(x) < INFINITY && fabs(z) < INFINITY)) {
+        fill_nan(out, 4);
+        return HERTZ_STRESS_EPOINT;
+    }
+    if (z < 0.0) {
+        fill_nan(out, 4);
+        return HERTZ_STRESS_EDEPTH;
+    }
+    X = x / b;
+    Z = z / b;
+    /* m + i n = sqrt(1 - (X - iZ)^2), principal root (m >= 0, n of the sign of X) */
+    re = (1.0 - fabs(X)) * (1.0 + fabs(X)) + Z * Z;
+    im = 2.0 * X * Z;
+    md = hypot(re, im);
+    if (re >= 0.0) {
+        m = sqrt(0.5 * (md + re));
+        n = m > 0.0 ? im / (2.0 * m) : 0.0;
+    } else {
+        n = sqrt(0.5 * (md - re));
+        m = fabs(im) / (2.0 * n);
+        if (X < 0.0)
+            n = -n;
+    }
+    mn2 = m * m + n * n;
+    if (mn2 == 0.0) {          /* the edge of the contact on the surface */
+        out[0] = out[1] = out[2] = out[3] = 0.0;
+        return 0;
+    }
+    /* d = m - Z = Re 1/(m + Z + i (n + X)) */
+    den = (m + Z) * (m + Z) + (n + X) * (n + X);
+    d = (m + Z) / den;
+    out[0] = -d * (m * d + 2.0 * n * n) / mn2;
+    out[1] = -m * d * (m + Z) / mn2;
+    out[2] = -n * d * (m + Z) / mn2;
+    out[3] = nu * (out[0] + out[1]);
+    return 0;
+}
+
+int hertz_line_subsurface(double b, double nu, double out[7])
+{
+    double D1, d1, f1, f2, D2, d2, al, a1, Ds, Dv, vm, Fv, F1;
+    if (!(b > 0.0 && b < INFINITY)) {
+        fill_nan(out, 7);
+        return HERTZ_STRESS_EAXES;
+    }
+    if (bad_nu(nu)) {
+        fill_nan(out, 7);
+        return HERTZ_STRESS_ENU;
+    }
+    /* On the axis, with d = sqrt(1 + Z^2) - Z in (0, 1] and D = d^2 (Z = (1 - D)/(2d)):
+       szz = -2d/(1+D), sxx = D szz, syy = nu (1 + D) szz; szz is the smallest.
+       (sxx - szz)/2 = d (1 - D)/(1 + D), largest at D = sqrt 5 - 2;
+       (syy - szz)/2 = d (1 - nu - nu D)/(1 + D), largest where
+       nu D^2 + (1 + 2nu) D - (1 - nu) = 0, or at the surface D = 1 if nu <= 0. */
+    D1 = sqrt(5.0) - 2.0;
+    d1 = sqrt(D1);
+    f1 = d1 * (1.0 - D1) / (1.0 + D1);
+    if (nu > 0.0) {
+        D2 = 2.0 * (1.0 - nu) / ((1.0 + 2.0 * nu) + sqrt(1.0 + 8.0 * nu));
+        d2 = sqrt(D2);
+        f2 = d2 * (1.0 - nu - nu * D2) / (1.0 + D2);
+    } else {
+        D2 = d2 = 1.0;
+        f2 = 0.5 - nu;
+    }
+    if (f1 >= f2) {
+        out[0] = f1;
+        out[1] = b * (1.0 - D1) / (2.0 * d1);
+    } else {
+        out[0] = f2;
+        out[1] = b * (1.0 - D2) / (2.0 * d2);
+    }
+    /* von Mises^2 = 2D (al D^2 + a1 D + al)/(1 + D)^2; its stationary points are the
+       roots of g(D) = al D^3 + 3 al D^2 + (2 a1 - al) D + al (convex for D > 0,
+       g(0) > 0): the first root is a maximum, compared with the surface D = 1. */
+    al = nu * nu + (1.0 - nu) * (1.0 - nu) + 1.0;
+    a1 = -4.0 * nu * (1.0 - nu) - 2.0;
+    F1 = 2.0 * (2.0 * al + a1) / 4.0;            /* at D = 1 */
+    vm = sqrt(F1);
+    Dv = 1.0;
+    Ds = -1.0 + sqrt(1.0 - (2.0 * a1 - al) / (3.0 * al));   /* minimum of g */
+    if (Ds > 0.0) {
+        double D = 0.0;
+        int i;
+        double gs = ((al * Ds + 3.0 * al) * Ds + (2.0 * a1 - al)) * Ds + al;
+        if (gs < 0.0) {
+            for (i = 0; i < 100; i++) {      /* Newton from the left: monotone */
+                double g = ((al * D + 3.0 * al) * D + (2.0 * a1 - al)) * D + al;
+                double gp = (3.0 * al * D + 6.0 * al) * D + (2.0 * a1 - al);
+                double Dn = D - g / gp;
+                if (!(Dn > D && Dn < Ds))
+                    break;
+                if (Dn - D <= 1e-16 * Dn) {
+                    D = Dn;
+                    break;
+                }
+                D = Dn;
+            }
+            if (D < 1.0) {
+                Fv = 2.0 * D * ((al * D + a1) * D + al) / ((1.0 + D) * (1.0 + D));
+                if (Fv > F1) {
+                    vm = sqrt(Fv);
+                    Dv = D;
+                }
+            }
+        }
+    }
+    out[2] = vm;
+    out[3] = b * (1.0 - Dv) / (2.0 * sqrt(Dv));
+    /* largest |sxz|: p0/4 at x = +-b sqrt(3)/2, z = b/2 (Johnson sec. 4.2) */
+    out[4] = 0.25;
+    out[5] = b * sqrt(3.0) / 2.0;
+    out[6] = 0.5 * b;
+    return 0;
+}

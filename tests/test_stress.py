@@ -1,0 +1,214 @@
+"""Contact.stress / subsurface / first_yield_load and the line contact's, through the API.
+
+References: published values (Johnson, Contact Mechanics; Harris), the closed forms on
+the z axis and of the orthogonal shear stress (REFERENCES.md, verified there against a
+quadrature of Boussinesq's solution) evaluated here with mpmath, and physical
+invariants (equilibrium, surface traction, symmetry, the line-contact limit).
+"""
+
+import json
+import math
+
+import mpmath as mp
+import numpy as np
+import pytest
+
+import hertz
+from hertz.cli import main
+
+STEEL = (210e9, 0.3)
+
+
+def point_contact(ratio=1.0, nu=0.3, load=100.0):
+    """A contact with a / b close to ``ratio`` (ellipsoid on a plane) and p0 ~ GPa."""
+    if ratio == 1.0:
+        b1 = hertz.Body.sphere(0.01, 210e9, nu)
+    else:  # a/b ~ alpha**(2/3) (Greenwood), good enough to place the ratio
+        b1 = hertz.Body(0.01, 0.01 * ratio ** 1.5, 210e9, nu)
+    return hertz.contact(b1, hertz.Body.plane(210e9, nu), load=load)
+
+
+# ------------------------------------------------------------ published values
+
+def test_circle_published_values():
+    c = point_contact()
+    m = c.subsurface()
+    assert m.tau_max / c.p0 == pytest.approx(0.3100, abs=5e-5)
+    assert m.z_tau_max / c.a == pytest.approx(0.4809, abs=5e-5)
+    assert m.von_mises / c.p0 == pytest.approx(0.6200, abs=5e-5)
+    assert m.tau_orthogonal / c.p0 == pytest.approx(0.2139, abs=5e-5)
+    assert m.y_tau_orthogonal / c.b == pytest.approx(0.848, abs=5e-4)
+    assert m.z_tau_orthogonal / c.b == pytest.approx(0.351, abs=5e-4)
+    assert m.tensile / c.p0 == pytest.approx((1 - 2 * 0.3) / 3, rel=1e-12)
+
+
+def test_line_contact_published_values():
+    lc = hertz.line_contact(hertz.Body.cylinder(0.01, *STEEL), hertz.Body.plane(*STEEL), 1e5)
+    m = lc.subsurface()
+    assert m.tau_max / lc.p0 == pytest.approx(0.3004, abs=5e-4)
+    assert m.z_tau_max / lc.half_width == pytest.approx(0.7861, abs=5e-4)
+    assert m.tau_orthogonal / lc.p0 == pytest.approx(0.25, rel=1e-12)
+    assert m.z_tau_orthogonal / lc.half_width == pytest.approx(0.5, rel=1e-12)
+    assert m.x_tau_orthogonal / lc.half_width == pytest.approx(math.sqrt(3) / 2, rel=1e-12)
+
+
+# ------------------------------------------------- closed forms on the z axis
+
+def axis_reference(a, b, nu, z):
+    """sigma_x, sigma_y, sigma_z / p0 on the z axis (REFERENCES.md), 40 digits."""
+    with mp.workdps(40):
+        a, b, nu, z = (mp.mpf(v) for v in (a, b, nu, z))
+        s = z * z
+        A, B = a * a + s, b * b + s
+        rd = mp.elliprd
+        sz = -a * b / mp.sqrt(A * B)
+        if a == b:
+            tail_x = tail_y = (1 - 2 * nu) / (2 * A)
+        else:
+            tail_x = (1 - 2 * nu) * (1 - mp.sqrt(B / A)) / (a * a - b * b)
+            tail_y = (1 - 2 * nu) * (mp.sqrt(A / B) - 1) / (a * a - b * b)
+        sx = a * b * (2 * (1 - nu) / 3 * z * rd(s, B, A) - 2 * nu / 3 * z * rd(A, B, s) - tail_x)
+        sy = a * b * (2 * (1 - nu) / 3 * z * rd(s, A, B) - 2 * nu / 3 * z * rd(A, B, s) - tail_y)
+        return sx, sy, sz
+
+
+@pytest.mark.parametrize("ratio, nu", [(1.0, 0.3), (1.0001, 0.25), (2.0, 0.3), (9.0, 0.5),
+                                       (30.0, 0.0), (3.0, -0.5)])
+def test_axis_stresses_against_closed_forms(ratio, nu):
+    c = point_contact(ratio, nu)
+    a, b = c.a, c.b
+    for depth in (1e-3, 0.1, 0.48, 1.0, 3.0, 30.0):
+        z = depth * b
+        s = c.stress(0.0, 0.0, z) / c.p0
+        ref = axis_reference(a, b, nu, z)
+        for got, exact in zip((s[0, 0], s[1, 1], s[2, 2]), ref, strict=True):
+            assert abs(got - float(exact)) <= 1e-12, (depth, got, exact)
+        assert np.max(np.abs([s[0, 1], s[0, 2], s[1, 2]])) <= 1e-13  # principal on the axis
+
+
+def test_orthogonal_shear_closed_form():
+    for ratio in (1.0, 2.0, 5.0, 20.0):
+        c = point_contact(ratio)
+        m = c.subsurface()
+        with mp.workdps(40):
+            k2 = (mp.mpf(c.b) / mp.mpf(c.a)) ** 2
+            t = mp.findroot(lambda t: (t * t - 1) * (2 * t - 1) - k2, 1 + k2)
+            tau = mp.sqrt(2 * t - 1) / (2 * t * (t + 1))
+            z0 = 1 / ((t + 1) * mp.sqrt(2 * t - 1))
+        assert m.tau_orthogonal / c.p0 == pytest.approx(float(tau), rel=1e-12)
+        assert m.z_tau_orthogonal / c.b == pytest.approx(float(z0), rel=1e-8)
+
+
+# ------------------------------------------------------------------ invariants
+
+@pytest.mark.parametrize("ratio", [1.0, 3.0, 12.0])
+def test_equilibrium_by_finite_differences(ratio):
+    c = point_contact(ratio, 0.28)
+    rng = np.random.default_rng(2)
+    h = 1e-4 * c.b
+    for _ in range(12):
+        x, y = rng.uniform(-1.5, 1.5) * c.a, rng.uniform(-1.5, 1.5) * c.b
+        z = rng.uniform(0.05, 2.0) * c.b
+        div = np.zeros(3)
+        for axis in range(3):
+            step = np.zeros(3)
+            step[axis] = h
+            plus = c.stress(*(np.array([x, y, z]) + step))
+            minus = c.stress(*(np.array([x, y, z]) - step))
+            div += (plus[axis, :] - minus[axis, :]) / (2 * h)
+        assert np.max(np.abs(div)) * c.b / c.p0 <= 1e-6
+
+
+def test_surface_traction_and_symmetry():
+    c = point_contact(4.0, 0.3)
+    x = np.array([0.0, 0.3, -0.7, 0.99, 1.2, 3.0]) * c.a
+    y = np.array([0.0, 0.2, 0.5, 0.0, 0.0, -1.0]) * c.b
+    s = c.stress(x, y, 0.0)
+    p = c.pressure(x, y)
+    np.testing.assert_allclose(s[:, 2, 2], -p, atol=1e-12 * c.p0)
+    np.testing.assert_allclose(s[:, 0, 2], 0.0, atol=1e-12 * c.p0)
+    np.testing.assert_allclose(s[:, 1, 2], 0.0, atol=1e-12 * c.p0)
+    pts = (0.4 * c.a, 0.7 * c.b, 0.3 * c.b)
+    base = c.stress(*pts)
+    mirror_x = c.stress(-pts[0], pts[1], pts[2])
+    np.testing.assert_allclose(mirror_x * np.array([[1, -1, -1], [-1, 1, 1], [-1, 1, 1]]), base,
+                               atol=1e-14 * c.p0)
+
+
+def test_point_contact_tends_to_the_line_contact():
+    lc = hertz.line_contact(hertz.Body.cylinder(0.01, *STEEL), hertz.Body.plane(*STEEL), 1e5)
+    line = lc.subsurface()
+    ratios = [10.0, 100.0, 1000.0]
+    gaps = []
+    for ratio in ratios:
+        c = point_contact(ratio)
+        m = c.subsurface()
+        gaps.append(abs(m.tau_max / c.p0 - line.tau_max / lc.p0))
+        assert m.z_tau_max / c.b == pytest.approx(line.z_tau_max / lc.half_width, rel=0.05)
+    assert gaps[0] > gaps[1] > gaps[2] and gaps[2] < 1e-3
+
+
+# ----------------------------------------------------------- API and first yield
+
+def test_shapes_and_bodies():
+    balls = hertz.Body.sphere(np.array([0.01, 0.02]), 210e9, 0.3)
+    plane = hertz.Body.plane(70e9, 0.45)
+    c = hertz.contact(balls, plane, load=100.0)
+    assert c.stress(0.0, 0.0, np.zeros((4, 1, 1)) + c.b[0]).shape == (4, 1, 2, 3, 3)
+    m1, m2 = c.subsurface(1), c.subsurface(2)
+    assert m1.tau_max.shape == (2,) and not np.allclose(m1.von_mises, m2.von_mises)
+    one = hertz.contact(hertz.Body.sphere(0.02, 210e9, 0.3), plane, load=100.0).subsurface(2)
+    assert one.von_mises == m2.von_mises[1]
+    with pytest.raises(ValueError, match="body must be 1 or 2"):
+        c.subsurface(3)
+    with pytest.raises(ValueError, match="z must be a depth >= 0"):
+        c.stress(0.0, 0.0, -1e-6)
+
+
+@pytest.mark.parametrize("criterion", ["von_mises", "tresca"])
+def test_first_yield_load_reaches_the_yield_strength(criterion):
+    ball, race = hertz.Body.sphere(6e-3, *STEEL), hertz.Body(-6.2e-3, 40e-3, *STEEL)
+    c = hertz.contact(ball, race, load=1500.0)
+    load = c.first_yield_load(1.2e9, criterion=criterion)
+    m = hertz.contact(ball, race, load=load).subsurface()
+    reached = m.von_mises if criterion == "von_mises" else 2 * m.tau_max
+    assert reached == pytest.approx(1.2e9, rel=1e-13)
+    with pytest.raises(ValueError, match="yield_strength must be a positive"):
+        c.first_yield_load(-1.0)
+    with pytest.raises(ValueError, match="criterion must be one of"):
+        c.first_yield_load(1e9, criterion="rankine")
+
+
+def test_load_for_a_peak_pressure_round_trips():
+    ball, race = hertz.Body.sphere(6e-3, *STEEL), hertz.Body(-6.2e-3, 40e-3, *STEEL)
+    for p0 in (1e6, 2e9, 4.5e9):
+        back = hertz.contact(ball, race, p0=hertz.contact(ball, race, p0=p0).p0)
+        assert back.p0 == p0
+        c = hertz.contact(ball, race, p0=p0)
+        assert hertz.contact(ball, race, load=c.load).p0 == pytest.approx(p0, rel=4e-15)
+
+
+# ------------------------------------------------------------------------ CLI
+
+def test_cli_prints_the_maxima(capsys):
+    assert main(["--yield-strength", "1.5e9"]) == 0
+    out = capsys.readouterr().out
+    assert "largest von Mises stress" in out and "first yield, von Mises" in out
+    assert main(["--json", "--yield-strength", "1.5e9"]) == 0
+    data = json.loads(capsys.readouterr().out)
+    c = hertz.contact(hertz.Body(6e-3, 6e-3, *STEEL), hertz.Body(-6.2e-3, 40e-3, *STEEL),
+                      load=1500.0)
+    assert data["stresses"]["body1"]["von_mises"] == c.subsurface(1).von_mises
+    assert data["stresses"]["body2"]["first_yield_load_tresca"] == pytest.approx(
+        c.first_yield_load(1.5e9, body=2, criterion="tresca"), rel=1e-15)
+    assert main(["--yield-strength", "-1"]) == 2
+    assert "yield_strength must be a positive" in capsys.readouterr().err
+
+
+def test_cli_plot(tmp_path, capsys):
+    pytest.importorskip("matplotlib")
+    path = tmp_path / "stress.png"
+    assert main(["--plot", str(path)]) == 0
+    assert path.read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
+    assert main(["--plot", str(tmp_path / "no" / "such" / "dir.png")]) == 2
+    assert "cannot write the plot" in capsys.readouterr().err
