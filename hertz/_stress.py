@@ -91,14 +91,20 @@ def _scalar_or_array(x):
 
 def point_stress(a, b, p0, nu, x, y, z):
     """The stress tensor [Pa], shape (..., 3, 3), at points (x, y, z) [m]."""
-    x, y, z = (as_float_array(v, name) if not is_duck_array(v) else v
-               for v, name in ((x, "x"), (y, "y"), (z, "z")))
-    if not is_duck_array(z) and np.any(z < 0):
+    x, y, z = (as_float_array(v, name) for v, name in ((x, "x"), (y, "y"), (z, "z")))
+    if np.any(z < 0):
         raise ValueError(f"z must be a depth >= 0 in m, got {float(np.min(z))!r}")
-    sxx, syy, szz, syz, sxz, sxy = _ufuncs.point_stress(a, b, nu, x, y, z)
-    rows = [[sxx, sxy, sxz], [sxy, syy, syz], [sxz, syz, szz]]
-    out = np.stack([np.stack(r, axis=-1) for r in rows], axis=-2)
-    return out * np.asarray(p0)[..., None, None]
+    shape = np.broadcast_shapes(*(np.shape(v) for v in (a, b, nu, p0, x, y, z)))
+    out = np.empty(shape + (3, 3))
+    # the ufunc writes the six components straight into the tensor's views
+    _ufuncs.point_stress(a, b, nu, x, y, z, out=(
+        out[..., 0, 0], out[..., 1, 1], out[..., 2, 2], out[..., 1, 2], out[..., 0, 2],
+        out[..., 0, 1]))
+    out[..., 2, 1] = out[..., 1, 2]
+    out[..., 2, 0] = out[..., 0, 2]
+    out[..., 1, 0] = out[..., 0, 1]
+    out *= np.asarray(p0)[..., None, None]
+    return out
 
 
 def subsurface(a, b, p0, nu) -> Subsurface:
