@@ -5,7 +5,8 @@
  * z >= 0 the depth into the body, tension positive.
  *
  * Every function returns 0 on success or one of the HERTZ_STRESS_E* codes below for
- * invalid input, in which case every output is NaN.
+ * invalid input, in which case every output is NaN. The functions keep no state and are
+ * safe to call from several threads.
  */
 #ifndef HERTZ_STRESS_KERNEL_H
 #define HERTZ_STRESS_KERNEL_H
@@ -15,29 +16,36 @@ extern "C" {
 #endif
 
 #define HERTZ_STRESS_OK 0
-#define HERTZ_STRESS_EAXES 1     /* a, b not finite, b <= 0 or a < b */
+#define HERTZ_STRESS_EAXES 1     /* a, b not finite, b <= 0, a < b or b/a < 1e-70 (underflow) */
 #define HERTZ_STRESS_ENU 2       /* nu not finite or outside (-1, 0.5] */
 #define HERTZ_STRESS_EPOINT 3    /* a coordinate is not finite */
 #define HERTZ_STRESS_EDEPTH 4    /* z < 0 */
 
 /* Cauchy stress / p0 at (x, y, z), z >= 0: out = {sxx, syy, szz, syz, sxz, sxy}.
-   Exact at z = 0 inside the ellipse (szz = -p/p0), on it and outside it. Coordinates
-   beyond about 1e150 a overflow. */
+   Exact also on the surface z = 0, inside the contact (szz = -p/p0), on its edge and
+   outside it, and on the axes; a = b and b << a need no special handling. Beyond 1e60 a
+   from the centre the field is Boussinesq's for the total force (exact there). */
 int hertz_point_stress(double a, double b, double nu, double x, double y, double z,
                        double out[6]);
 
 /* Maxima below a point contact (stresses / p0, positions in the unit of a and b):
-   out[0], out[1]   tau_max, z:   the largest (s1 - s3)/2 on the z axis and its depth
-   out[2], out[3]   von_mises, z: the largest von Mises stress on the z axis and its depth
-   out[4..6]        tau_orthogonal, y, z: the largest |syz| in the plane x = 0 and where
-                    (y > 0); independent of nu
-   out[7..9]        tensile, x, y: the largest principal stress on the surface (in the plane
-                    z = 0; it is reached on the edge of the contact) and where on the edge
-                    (x, y >= 0). For nu = 0.5 it is 0 (the surface is stress free outside
-                    the contact and compressed inside), reported at (a, 0).
-   The maxima on the z axis are global maxima of the shear and von Mises stress below the
-   contact (the axis is where they peak for every b/a and nu in (-1, 0.5]) only in the
-   usual sense of Hertz theory; this function searches the axis only. */
+   out[0], out[1]  tau_max, z: the largest (s1 - s3)/2 on the z axis and its depth
+                   (0 when the largest value is at the surface, as for nu <= 0 and
+                   elongated contacts)
+   out[2], out[3]  von_mises, z: the largest von Mises stress on the z axis and its depth
+   out[4..6]       tau_orthogonal, y, z: the largest |syz| in the plane x = 0 and where
+                   (y > 0); independent of nu (Lundberg & Palmgren)
+   out[7..9]       tensile, x, y: the largest principal stress on the surface z = 0, inside
+                   and outside the contact. It is the radial stress sxx at the end of the
+                   major axis, (x, y) = (a, 0): along the edge the largest in-plane principal
+                   stress decreases monotonically from (a, 0) to (0, b) for every b/a < 1
+                   (checked numerically for b/a from 1e-6 to 1 - 1e-5), and for a circle it
+                   is the same everywhere on the edge ((1 - 2nu)/3). It scales with
+                   (1 - 2nu) and is 0 for nu = 0.5.
+   out[10], out[11] reserved, set to NaN.
+   The maxima on the axis are searched over all depths, including the surface; they are
+   where the shear and von Mises stresses peak below a frictionless Hertz contact, but
+   this function does not search off the axis. */
 int hertz_subsurface(double a, double b, double nu, double out[12]);
 
 /* Line contact (plane strain), semi-width b, x across the strip, z depth:
@@ -46,8 +54,8 @@ int hertz_line_stress(double b, double nu, double x, double z, double out[4]);
 
 /* Maxima below a line contact:
    out = {tau_max, z_tau_max, von_mises, z_von_mises, tau_orthogonal (max |sxz|), x, z}.
-   tau_max and von Mises are searched on the z axis (x = 0); tau_orthogonal is reached at
-   x = +-b sqrt(3)/2, z = b/2 with value p0/4 (x > 0 returned). */
+   tau_max and von Mises are the largest on the z axis (x = 0) over all depths, in closed
+   form; tau_orthogonal is p0/4 at x = +-b sqrt(3)/2, z = b/2 (x > 0 returned). */
 int hertz_line_subsurface(double b, double nu, double out[7]);
 
 #ifdef __cplusplus
