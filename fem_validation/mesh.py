@@ -21,7 +21,14 @@ from .scenes import Scene
 
 log = logging.getLogger("fem_validation")
 
-GEO = Path(__file__).resolve().parents[1] / "meshes" / "blocks.geo"
+def _geometry_path(name: str = "blocks.geo") -> Path:
+    """The geometry: packaged beside the code (where a wheel carries it, copied from meshes/
+    by setup.py), else in the source checkout's meshes/ (the place to read and edit it)."""
+    packaged = Path(__file__).resolve().parent / "meshes" / name
+    return packaged if packaged.is_file() else Path(__file__).resolve().parents[1] / "meshes" / name
+
+
+GEO = _geometry_path()
 
 #: Element size in the contact zone, in units of b, for each mesh level.
 LEVEL_H0 = {0: 0.4, 1: 0.2, 2: 0.1, 3: 0.05}
