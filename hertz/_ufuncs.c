@@ -334,71 +334,57 @@ stress_error(int code, const char *fn, const double *args, int nargs)
     return -1;
 }
 
+/* The four stress kernels behind one signature: args in, res out. */
 static int
-point_stress_block(ptrdiff_t n, const double *const *in, double *const *out, int unused)
+point_stress_one(const double *x, double *res)
 {
-    (void)unused;
+    return hertz_point_stress(x[0], x[1], x[2], x[3], x[4], x[5], res);
+}
+
+static int
+subsurface_one(const double *x, double *res)
+{
+    return hertz_subsurface(x[0], x[1], x[2], res);
+}
+
+static int
+line_stress_one(const double *x, double *res)
+{
+    return hertz_line_stress(x[0], x[1], x[2], x[3], res);
+}
+
+static int
+line_subsurface_one(const double *x, double *res)
+{
+    return hertz_line_subsurface(x[0], x[1], res);
+}
+
+static const struct {
+    int (*fn)(const double *, double *);
+    int nin, nout;
+    const char *what;
+} stress_kernels[] = {
+    {point_stress_one, 6, 6, "stress (a, b, nu, x, y, z)"},
+    {subsurface_one, 3, 10, "subsurface (a, b, nu)"},
+    {line_stress_one, 4, 4, "line stress (b, nu, x, z)"},
+    {line_subsurface_one, 2, 7, "line subsurface (b, nu)"},
+};
+
+/* variant: the index in stress_kernels. */
+static int
+stress_block(ptrdiff_t n, const double *const *in, double *const *out, int variant)
+{
+    int nin = stress_kernels[variant].nin, nout = stress_kernels[variant].nout;
     for (ptrdiff_t i = 0; i < n; ++i) {
-        double args[6], res[6];
-        for (int k = 0; k < 6; ++k) {
+        double args[6], res[12]; /* hertz_subsurface writes 12 (two reserved) */
+        for (int k = 0; k < nin; ++k) {
             args[k] = in[k][i];
         }
-        int code = hertz_point_stress(args[0], args[1], args[2], args[3], args[4], args[5], res);
+        int code = stress_kernels[variant].fn(args, res);
         if (code) {
-            return stress_error(code, "stress (a, b, nu, x, y, z)", args, 6);
+            return stress_error(code, stress_kernels[variant].what, args, nin);
         }
-        for (int k = 0; k < 6; ++k) {
-            out[k][i] = res[k];
-        }
-    }
-    return 0;
-}
-
-static int
-subsurface_block(ptrdiff_t n, const double *const *in, double *const *out, int unused)
-{
-    (void)unused;
-    for (ptrdiff_t i = 0; i < n; ++i) {
-        double args[3] = {in[0][i], in[1][i], in[2][i]}, res[12];
-        int code = hertz_subsurface(args[0], args[1], args[2], res);
-        if (code) {
-            return stress_error(code, "subsurface (a, b, nu)", args, 3);
-        }
-        for (int k = 0; k < 10; ++k) {
-            out[k][i] = res[k];
-        }
-    }
-    return 0;
-}
-
-static int
-line_stress_block(ptrdiff_t n, const double *const *in, double *const *out, int unused)
-{
-    (void)unused;
-    for (ptrdiff_t i = 0; i < n; ++i) {
-        double args[4] = {in[0][i], in[1][i], in[2][i], in[3][i]}, res[4];
-        int code = hertz_line_stress(args[0], args[1], args[2], args[3], res);
-        if (code) {
-            return stress_error(code, "line stress (b, nu, x, z)", args, 4);
-        }
-        for (int k = 0; k < 4; ++k) {
-            out[k][i] = res[k];
-        }
-    }
-    return 0;
-}
-
-static int
-line_subsurface_block(ptrdiff_t n, const double *const *in, double *const *out, int unused)
-{
-    (void)unused;
-    for (ptrdiff_t i = 0; i < n; ++i) {
-        double args[2] = {in[0][i], in[1][i]}, res[7];
-        int code = hertz_line_subsurface(args[0], args[1], res);
-        if (code) {
-            return stress_error(code, "line subsurface (b, nu)", args, 2);
-        }
-        for (int k = 0; k < 7; ++k) {
+        for (int k = 0; k < nout; ++k) {
             out[k][i] = res[k];
         }
     }
@@ -493,10 +479,10 @@ LOOP(given_p0_loop, 10, 6, given_block, HERTZ_GIVEN_P0)
 LOOP(contact_status_loop, 10, 1, contact_status_block, HERTZ_GIVEN_LOAD)
 LOOP(line_loop, 9, 5, line_block, 0)
 LOOP(line_status_loop, 9, 1, line_block, 1)
-LOOP(point_stress_loop, 6, 6, point_stress_block, 0)
-LOOP(subsurface_loop, 3, 10, subsurface_block, 0)
-LOOP(line_stress_loop, 4, 4, line_stress_block, 0)
-LOOP(line_subsurface_loop, 2, 7, line_subsurface_block, 0)
+LOOP(point_stress_loop, 6, 6, stress_block, 0)
+LOOP(subsurface_loop, 3, 10, stress_block, 1)
+LOOP(line_stress_loop, 4, 4, stress_block, 2)
+LOOP(line_subsurface_loop, 2, 7, stress_block, 3)
 
 /* Any real dtype (and Python int/float) is cast to float64; bool, complex,
  * strings, datetimes and objects are refused. */
