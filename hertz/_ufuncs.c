@@ -318,7 +318,8 @@ static int
 stress_error(int code, const char *fn, const double *args, int nargs)
 {
     static const char *const what[] = {
-        "", "the semi-axes must be finite with a >= b > 0",
+        "", "the semi-axes must be finite with a >= b > 0 and b/a >= 1e-70 (below that the "
+        "contact is a line contact: use hertz.line_contact)",
         "nu must be a Poisson's ratio in (-1, 0.5]", "the point must have finite coordinates",
         "z must be a depth >= 0"};
     PyGILState_STATE state = PyGILState_Ensure();

@@ -11,7 +11,8 @@ equilibrium and the free surface; cf. Johnson, Contact Mechanics, sec. 3.2):
 
     sxx = [(1-2nu) (cos 2t / (R (R+z)) + z sin^2 t / R^3) - 3 z r^2 cos^2 t / R^5] / 2pi
     syy = [(1-2nu) (-cos 2t / (R (R+z)) + z cos^2 t / R^3) - 3 z r^2 sin^2 t / R^5] / 2pi
-    szz = -3 z^3 / (2pi R^5),      sxz = -3 r cos t z^2 / (2pi R^5),   syz = -3 r sin t z^2 / (2pi R^5)
+    szz = -3 z^3 / (2pi R^5)
+    sxz = -3 r cos t z^2 / (2pi R^5),   syz = -3 r sin t z^2 / (2pi R^5)
     sxy = [(1-2nu) sin 2t (1/(R (R+z)) - z / (2 R^3)) - 3 z r^2 sin t cos t / R^5] / 2pi
 
 The integral is taken in polar coordinates (r, theta) centred on the field point (x, y), the
@@ -37,8 +38,9 @@ of the tests the error was up to 3e-15. The convergence tests compare successive
 each rule, so a quadrature can stop early on a feature it has not resolved: the
 tolerance is not a guarantee. Not trusted on the surface (z = 0) within about 1e-10 a of
 the edge: at 6e-17 a outside it the error was 1.6e-7 (the angular integrand then has
-features far narrower than the nodes); at 1e-8 a it was 7e-16. A point costs 0.2 s to
-20 s (long ellipses and points just below the edge are the slow ones). The 2-D line
+features far narrower than the nodes); at 1e-8 a it was 7e-16. At the defaults a point
+costs 0.1 s to 30 s, median 3 s, on a shared 2-core machine (long ellipses and points
+just below or beside the edge are the slow ones; one outlier took 100 s). The 2-D line
 reference uses mpmath.quad and is good to about 1e-25.
 """
 
@@ -107,17 +109,17 @@ def _ts(f, lo, hi, n, tol, maxlevel=12, minlevel=2):
         for x, comp, w in _level_nodes(level, dps):
             if x == 0:
                 vals = f(mid, half, half)
-                total = [t + w * v for t, v in zip(total, vals)]
+                total = [t + w * v for t, v in zip(total, vals, strict=True)]
                 continue
             d = half * comp
             v1 = f(hi - d, 2 * half - d, d)
             v2 = f(lo + d, d, 2 * half - d)
-            total = [t + w * (p + q) for t, p, q in zip(total, v1, v2)]
+            total = [t + w * (p + q) for t, p, q in zip(total, v1, v2, strict=True)]
         # weights carry the step h of their own level: the level-l sum is the previous
         # total halved plus the new (odd) nodes
         est = [t * half for t in total]
         if prev is not None and level >= minlevel:
-            diff = max(abs(e - p) for e, p in zip(est, prev))
+            diff = max(abs(e - p) for e, p in zip(est, prev, strict=True))
             scale = max(max(abs(e) for e in est), mp.mpf(1) if n == 6 else abs(half))
             if _converged(diff, pdiff, scale, tol):
                 return est
@@ -170,9 +172,9 @@ def _cc(f, n_out, tol, nmin=8, nmax=2048):
             key = j * step
             if key not in vals:
                 vals[key] = f(v, om, sp, s2, c2)
-            est = [e + w * y for e, y in zip(est, vals[key])]
+            est = [e + w * y for e, y in zip(est, vals[key], strict=True)]
         if prev is not None:
-            diff = max(abs(e - p) for e, p in zip(est, prev))
+            diff = max(abs(e - p) for e, p in zip(est, prev, strict=True))
             scale = max([abs(e) for e in est] + [mp.mpf(1)])
             if _converged(diff, pdiff, scale, tol, squaring=True) or n >= nmax:
                 return est
@@ -183,7 +185,7 @@ def _cc(f, n_out, tol, nmin=8, nmax=2048):
 
 # ---------------------------------------------------------------- point contact
 def _radial(a, b, x, y, z, theta, tol):
-    """Radial integrals J1..J5 (see _angular) along the ray from (x, y) in direction theta,
+    """Radial integrals j1..j5 (see _angular) along the ray from (x, y) in direction theta,
     and cos, sin of theta; None if the ray misses the ellipse."""
     c, s = mp.cos(theta), mp.sin(theta)
     qa = (c / a) ** 2 + (s / b) ** 2
@@ -220,18 +222,18 @@ def _radial(a, b, x, y, z, theta, tol):
         return m
 
     if z > 0:
-        S = mp.asinh(r2 / z)
-        eS = mp.exp(S)
+        s_hi = mp.asinh(r2 / z)
+        e_shi = mp.exp(s_hi)
         s1 = mp.asinh(r1 / z)
         es1 = mp.exp(s1)
         if inside and s1 < -1:
-            # s = S (1 - om^2) on [0, S]; the zero of p at s1 is far enough
+            # s = s_hi (1 - om^2) on [0, s_hi]; the zero of p at s1 is far enough
             def smap(v, om, sp, s2, c2):
-                dhi = S * om * om
-                return S - dhi, dhi, 2 * S * om
+                dhi = s_hi * om * om
+                return s_hi - dhi, dhi, 2 * s_hi * om
         else:
-            v0 = 2 / mp.pi * mp.asin(mp.sqrt(-s1 / (S - s1))) if inside else mp.mpf(0)
-            cm = cosmap(s1, S, v0)
+            v0 = 2 / mp.pi * mp.asin(mp.sqrt(-s1 / (s_hi - s1))) if inside else mp.mpf(0)
+            cm = cosmap(s1, s_hi, v0)
 
             def smap(v, om, sp, s2, c2):
                 dlo, dhi, ds = cm(v, om, sp, s2, c2)
@@ -245,9 +247,9 @@ def _radial(a, b, x, y, z, theta, tol):
             sh = (e - 1 / e) / 2 if abs(sv) > mp.mpf("0.1") else mp.sinh(sv)
             ch = (e + 1 / e) / 2
             r = z * sh
-            # r2 - r = z (sinh S - sinh s), r - r1 = z (sinh s - sinh s1), exact near the ends
+            # r2 - r = z (sinh s_hi - sinh s), r - r1 = z (sinh s - sinh s1), exact near the ends
             d2 = r2 - r if dhi > mp.mpf("0.5") else \
-                z * e * mp.expm1(dhi) * (1 + 1 / (e * eS)) / 2
+                z * e * mp.expm1(dhi) * (1 + 1 / (e * e_shi)) / 2
             dlo = sv - s1
             d1 = r - r1 if dlo > mp.mpf("0.5") else \
                 z * es1 * mp.expm1(dlo) * (1 + 1 / (e * es1)) / 2
@@ -257,7 +259,7 @@ def _radial(a, b, x, y, z, theta, tol):
             return [p * sh / (ch + 1), pse * th, pse * th ** 3, pse * th * se * se,
                     pse * se * th * th]
 
-        J = _cc(f, 5, tol)
+        jr = _cc(f, 5, tol)
     else:
         L = r2 - r1
         if inside:
@@ -277,8 +279,8 @@ def _radial(a, b, x, y, z, theta, tol):
                     return [mp.sqrt(qa) * L * mp.pi * w]
                 return [qa * (r2 + r1 - r) / (p + pc) * dr]
 
-            J1 = _cc(f, 1, tol)[0] + (pc * mp.log(r2) if pc != 0 else 0)
-            J = [J1, pc, 2 * pc / 3, pc / 3, mp.mpf(0)]
+            j1 = _cc(f, 1, tol)[0] + (pc * mp.log(r2) if pc != 0 else 0)
+            jr = [j1, pc, 2 * pc / 3, pc / 3, mp.mpf(0)]
         else:
             cm = cosmap(r1, r2, 0)
 
@@ -286,16 +288,16 @@ def _radial(a, b, x, y, z, theta, tol):
                 d1, d2, dr = cm(*node)
                 return [mp.sqrt(qa * d1 * d2) / (r1 + d1) * dr]
 
-            J = [_cc(f, 1, tol)[0], 0, 0, 0, 0]
-    return J, c, s
+            jr = [_cc(f, 1, tol)[0], 0, 0, 0, 0]
+    return jr, c, s
 
 
 def _angular(a, b, x, y, z, nu, tol):
     """The stress as an integral over the direction theta of the ray from the field point,
     of radial integrals along it (s = asinh(r/z), R^2 = r^2 + z^2, p the pressure):
 
-        J1 = int p r/(R(R+z)) dr = int p tanh(s/2) ds      J2 = int p z r/R^3 dr
-        J3 = int p z r^3/R^5 dr     J4 = int p z^3 r/R^5 dr     J5 = int p z^2 r^2/R^5 dr
+        j1 = int p r/(R(R+z)) dr = int p tanh(s/2) ds      j2 = int p z r/R^3 dr
+        j3 = int p z r^3/R^5 dr     j4 = int p z^3 r/R^5 dr     j5 = int p z^2 r^2/R^5 dr
     """
     k = 1 - 2 * nu
 
@@ -303,14 +305,14 @@ def _angular(a, b, x, y, z, nu, tol):
         res = _radial(a, b, x, y, z, theta, tol / 10)
         if res is None:
             return [mp.mpf(0)] * 6
-        (J1, J2, J3, J4, J5), c, s = res
+        (j1, j2, j3, j4, j5), c, s = res
         c2, s2, cs = c * c, s * s, c * s
-        return [k * ((c2 - s2) * J1 + s2 * J2) - 3 * c2 * J3,
-                k * (-(c2 - s2) * J1 + c2 * J2) - 3 * s2 * J3,
-                -3 * J4,
-                3 * s * J5,
-                3 * c * J5,
-                k * (2 * cs * J1 - cs * J2) - 3 * cs * J3]
+        return [k * ((c2 - s2) * j1 + s2 * j2) - 3 * c2 * j3,
+                k * (-(c2 - s2) * j1 + c2 * j2) - 3 * s2 * j3,
+                -3 * j4,
+                3 * s * j5,
+                3 * c * j5,
+                k * (2 * cs * j1 - cs * j2) - 3 * cs * j3]
 
     qc = (x / a) ** 2 + (y / b) ** 2 - 1
     total = [mp.mpf(0)] * 6
@@ -326,7 +328,7 @@ def _angular(a, b, x, y, z, nu, tol):
                     vals[j * step] = g(2 * mp.pi * j / n)
             est = [sum(vals[j * step][i] for j in range(n)) / n * 2 * mp.pi for i in range(6)]
             if prev is not None:
-                diff = max(abs(e - p) for e, p in zip(est, prev))
+                diff = max(abs(e - p) for e, p in zip(est, prev, strict=True))
                 if _converged(diff, pdiff, mp.mpf(1), tol, squaring=True) or n >= nmax:
                     total = est
                     break
@@ -339,27 +341,27 @@ def _angular(a, b, x, y, z, nu, tol):
         nx, ny = x / a ** 2, y / b ** 2
         tn = mp.atan2(ny, nx) if (nx != 0 or ny != 0) else mp.pi / 2
         br = [tn + j * mp.pi / 2 for j in range(5)]
-        for lo, hi in zip(br[:-1], br[1:]):
+        for lo, hi in zip(br[:-1], br[1:], strict=True):
             part = _ts(g, lo, hi, 6, tol)
-            total = [t + p for t, p in zip(total, part)]
+            total = [t + p for t, p in zip(total, part, strict=True)]
     else:
         # outside: the cone of directions that meet the ellipse, between the two tangents
-        # A2 c^2 + 2 B2 c s + C2 s^2 = 0 (double root of the chord equation)
-        A2 = (x / a ** 2) ** 2 - qc / a ** 2
-        B2 = x * y / (a * a * b * b)
-        C2 = (y / b ** 2) ** 2 - qc / b ** 2
+        # qa2 c^2 + 2 qb2 c s + qc2 s^2 = 0 (double root of the chord equation)
+        qa2 = (x / a ** 2) ** 2 - qc / a ** 2
+        qb2 = x * y / (a * a * b * b)
+        qc2 = (y / b ** 2) ** 2 - qc / b ** 2
         t0 = mp.atan2(-y, -x)            # towards the centre, inside the cone
         ct, st = mp.cos(t0), mp.sin(t0)
-        # theta = t0 + phi, P + 2 Qh tan(phi) + R tan(phi)^2 = 0
-        P = A2 * ct * ct + 2 * B2 * ct * st + C2 * st * st
-        Qh = -A2 * ct * st + B2 * (ct * ct - st * st) + C2 * st * ct
-        R = A2 * st * st - 2 * B2 * ct * st + C2 * ct * ct
-        dq = mp.sqrt(Qh * Qh - P * R)
+        # theta = t0 + phi, P + 2 qh tan(phi) + R tan(phi)^2 = 0
+        P = qa2 * ct * ct + 2 * qb2 * ct * st + qc2 * st * st
+        qh = -qa2 * ct * st + qb2 * (ct * ct - st * st) + qc2 * st * ct
+        R = qa2 * st * st - 2 * qb2 * ct * st + qc2 * ct * ct
+        dq = mp.sqrt(qh * qh - P * R)
         ends = []
-        for T in ((-Qh - dq) / R, (-Qh + dq) / R):
-            # the line t0 + atan(T) (mod pi): the tangent is the direction along it that
+        for tan_phi in ((-qh - dq) / R, (-qh + dq) / R):
+            # the line t0 + atan(tan_phi) (mod pi): the tangent is the direction along it that
             # points towards the ellipse (x c/a^2 + y s/b^2 < 0)
-            th = t0 + mp.atan(T)
+            th = t0 + mp.atan(tan_phi)
             if x * mp.cos(th) / a ** 2 + y * mp.sin(th) / b ** 2 > 0:
                 th += mp.pi
             while th > t0 + mp.pi:
@@ -368,9 +370,9 @@ def _angular(a, b, x, y, z, nu, tol):
                 th += 2 * mp.pi
             ends.append(th)
         lo, hi = min(ends), max(ends)
-        for l, h in ((lo, t0), (t0, hi)):
-            part = _ts(g, l, h, 6, tol)
-            total = [t + p for t, p in zip(total, part)]
+        for p_lo, p_hi in ((lo, t0), (t0, hi)):
+            part = _ts(g, p_lo, p_hi, 6, tol)
+            total = [t + p for t, p in zip(total, part, strict=True)]
     return [t / (2 * mp.pi) for t in total]
 
 
@@ -444,18 +446,18 @@ def axis_stress_ref(a, b, nu, z, dps=30):
         a, b, nu, z = (mp.mpf(v) for v in (a, b, nu, z))
         s = z * z
         A, B = a * a + s, b * b + s
-        rA, rB = mp.sqrt(A), mp.sqrt(B)
+        r_a, r_b = mp.sqrt(A), mp.sqrt(B)
         if z == 0:
-            JA = JB = mp.mpf(0)
-            Jw = 2 / (rA * rB)
+            ja = jb = mp.mpf(0)
+            jw = 2 / (r_a * r_b)
         else:
-            JA = 2 * z * mp.elliprd(s, B, A) / 3
-            JB = 2 * z * mp.elliprd(s, A, B) / 3
-            Jw = 2 * z * mp.elliprd(A, B, s) / 3
+            ja = 2 * z * mp.elliprd(s, B, A) / 3
+            jb = 2 * z * mp.elliprd(s, A, B) / 3
+            jw = 2 * z * mp.elliprd(A, B, s) / 3
         c1 = 1 - 2 * nu
-        sxx = a * b * ((1 - nu) * JA - nu * Jw - c1 / (rA * (rA + rB)))
-        syy = a * b * ((1 - nu) * JB - nu * Jw - c1 / (rB * (rA + rB)))
-        return sxx, syy, -a * b / (rA * rB)
+        sxx = a * b * ((1 - nu) * ja - nu * jw - c1 / (r_a * (r_a + r_b)))
+        syy = a * b * ((1 - nu) * jb - nu * jw - c1 / (r_b * (r_a + r_b)))
+        return sxx, syy, -a * b / (r_a * r_b)
 
 
 def axis_maxima_ref(a, b, nu, dps=30, npts=160):

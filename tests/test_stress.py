@@ -163,6 +163,11 @@ def test_shapes_and_bodies():
         c.subsurface(3)
     with pytest.raises(ValueError, match="z must be a depth >= 0"):
         c.stress(0.0, 0.0, -1e-6)
+    # b/a = 5e-153: the kernel's range ends at 1e-70, so it names the line contact
+    cylinder = hertz.contact(hertz.Body(1e-2, 1e300, *STEEL), plane, load=1.0)
+    for call in (cylinder.subsurface, lambda: cylinder.stress(0.0, 0.0, cylinder.b)):
+        with pytest.raises(ValueError, match=r"b/a >= 1e-70 .*use hertz.line_contact"):
+            call()
 
 
 @pytest.mark.parametrize("criterion", ["von_mises", "tresca"])

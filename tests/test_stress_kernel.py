@@ -14,8 +14,7 @@ from pathlib import Path
 import mpmath as mp
 import numpy as np
 import pytest
-from reference_stress import (axis_maxima_ref, axis_stress_ref, line_stress_ref4,
-                              stress_ref6)
+from reference_stress import axis_maxima_ref, axis_stress_ref, line_stress_ref4, stress_ref6
 
 SOURCE = Path(__file__).resolve().parent.parent / "hertz" / "_stress_kernel.c"
 D = ctypes.c_double
@@ -140,7 +139,8 @@ def test_axis_maxima_against_mpmath(lib, b, nu):
     out, rc = call(lib.hertz_subsurface, 12, 2.0, 2.0 * b, nu)
     assert rc == 0
     ref = axis_maxima_ref(2.0, 2.0 * b, nu, dps=20, npts=60)
-    for (val, z), (rv, rz) in zip((out[0:2], out[2:4]), (ref["tau"], ref["von_mises"])):
+    pairs = zip((out[0:2], out[2:4]), (ref["tau"], ref["von_mises"]), strict=True)
+    for (val, z), (rv, rz) in pairs:
         assert val == pytest.approx(float(rv), rel=1e-12)
         assert z == pytest.approx(float(rz), rel=1e-8, abs=1e-300)
 
@@ -156,7 +156,8 @@ def test_orthogonal_shear_is_the_largest_syz_in_x_0(lib, b):
         assert abs(q[3]) < tau
     # a coarse scan finds nothing larger
     ys, zs = np.meshgrid(np.linspace(0.0, 2.0, 41) * b, np.linspace(0.01, 1.5, 31) * b)
-    scan = max(abs(point(lib, 1.0, b, 0.3, 0.0, y, z)[3]) for y, z in zip(ys.ravel(), zs.ravel()))
+    scan = max(abs(point(lib, 1.0, b, 0.3, 0.0, y, z)[3])
+               for y, z in zip(ys.ravel(), zs.ravel(), strict=True))
     assert scan <= tau
 
 
@@ -193,7 +194,7 @@ def test_equilibrium(lib, b):
         w = np.array([1.0, -8.0, 0.0, 8.0, -1.0]) / (12 * h)
         terms = np.zeros((3, 3))           # d sigma_ij / d x_j
         for j in range(3):
-            for m, wm in zip(range(-2, 3), w):
+            for m, wm in zip(range(-2, 3), w, strict=True):
                 p = list(p0)
                 p[j] += m * h
                 s = point(lib, 1.0, b, nu, *p)
