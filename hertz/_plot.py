@@ -39,11 +39,12 @@ def stress_figure(c, body: int = 1, title: str = "", n: int = 121):
                                                    ("y (minor axis)", 1.6 * c.b, "x = 0")),
                                        strict=True):
         u = np.linspace(-half, half, n)
-        U, Z = np.meshgrid(u, z)
-        tensor = c.stress(U, 0.0, Z, body) if plane == "y = 0" else c.stress(0.0, U, Z, body)
+        along, depth = np.meshgrid(u, z)
+        tensor = (c.stress(along, 0.0, depth, body) if plane == "y = 0"
+                  else c.stress(0.0, along, depth, body))
         field = von_mises(tensor) / c.p0
-        mesh = ax.pcolormesh(U * 1e3, Z * 1e3, field, shading="auto", cmap="viridis")
-        ax.contour(U * 1e3, Z * 1e3, field, levels=8, colors="white", linewidths=0.5)
+        mesh = ax.pcolormesh(along * 1e3, depth * 1e3, field, shading="auto", cmap="viridis")
+        ax.contour(along * 1e3, depth * 1e3, field, levels=8, colors="white", linewidths=0.5)
         semi = c.a if plane == "y = 0" else c.b
         ax.plot([-semi * 1e3, semi * 1e3], [0.0, 0.0], color="red", lw=4,
                 label="contact patch")

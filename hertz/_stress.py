@@ -7,7 +7,6 @@ lengths, and wraps the maxima in :class:`Subsurface`.
 
 from __future__ import annotations
 
-import math
 from dataclasses import dataclass
 
 import numpy as np

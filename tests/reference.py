@@ -8,7 +8,8 @@ relation (the seed's eq. (alpha_lambda_relation))
 found by a bracketing solver in u = ln(lambda) with mpmath's own complete
 elliptic integrals (parameter convention), at 50 significant digits plus
 guard digits for the cancellation near alpha = 1 and the tiny 1 - m at large
-alpha.  (The committed table tests/data/reference_lambda.csv was written at 50.)  The contact quantities follow the seed's section 2 literally.
+alpha.  (The committed table tests/data/reference_lambda.csv was written at 50.)  The
+contact quantities follow the seed's section 2 literally.
 
 Importing this module sets mpmath's working precision to 60 digits, so that
 differences taken by the caller keep their accuracy.

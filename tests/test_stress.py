@@ -92,7 +92,7 @@ def test_orthogonal_shear_closed_form():
         m = c.subsurface()
         with mp.workdps(40):
             k2 = (mp.mpf(c.b) / mp.mpf(c.a)) ** 2
-            t = mp.findroot(lambda t: (t * t - 1) * (2 * t - 1) - k2, 1 + k2)
+            t = mp.findroot(lambda t, k2=k2: (t * t - 1) * (2 * t - 1) - k2, 1 + k2)
             tau = mp.sqrt(2 * t - 1) / (2 * t * (t + 1))
             z0 = 1 / ((t + 1) * mp.sqrt(2 * t - 1))
         assert m.tau_orthogonal / c.p0 == pytest.approx(float(tau), rel=1e-12)
