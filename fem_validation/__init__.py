@@ -9,7 +9,8 @@ Run ``python -m fem_validation`` (see ``--help``), or from Python::
 The model is Hertz's own: two half-spaces, truncated to blocks, with the
 quadratic gap of the scene's curvatures between their flat faces (see
 ``fem_validation.solve``).  Needs the ``fem`` extra (scikit-fem, meshio, gmsh,
-pyamg, matplotlib) and a source checkout (the geometry is meshes/blocks.geo).
+pyamg, matplotlib); the geometry is meshes/blocks.geo (see
+``fem_validation.mesh.geometry_file``).
 """
 
 from __future__ import annotations
@@ -18,29 +19,33 @@ import logging
 import time
 from pathlib import Path
 
-from .compare import (
-    Comparison,
-    compare_with_hertz,
-    plot_profiles,
-    profiles,
-    write_reports,
-    write_vtu,
-)
+from . import memory
+from .compare import TARGETS, Comparison, check, compare_with_hertz, profiles
 from .errors import FEMValidationError
-from .mesh import DEFAULT_LEVEL, LEVEL_H0, BlockMesh, build
+from .mesh import DEFAULT_LEVEL, LEVEL_H0, LEVEL_SCALE, BlockMesh, build
+from .output import plot_profiles, write_reports, write_vtu
 from .scenes import Scene, crossed_30deg, default_scenes, equal_steel, steel_on_aluminium
-from .solve import KAPPA, ContactSolution, solve_contact
+from .solve import (
+    KAPPA,
+    REBUILD_FRACTION,
+    ContactSolution,
+    solve_contact,
+    transferred_active_set,
+)
 
 __all__ = [
     "DEFAULT_LEVEL",
     "KAPPA",
     "LEVEL_H0",
+    "LEVEL_SCALE",
+    "TARGETS",
     "BlockMesh",
     "Comparison",
     "ContactSolution",
     "FEMValidationError",
     "Scene",
     "build",
+    "check",
     "compare_with_hertz",
     "crossed_30deg",
     "default_scenes",
@@ -52,9 +57,13 @@ __all__ = [
 
 log = logging.getLogger("fem_validation")
 
+#: A nested start solves this many levels coarser first.
+NESTED_LEVELS = 2
+
 
 def validate(scene: Scene, level: int = DEFAULT_LEVEL, out: str | Path | None = None,
-             kappa: float = KAPPA) -> Comparison:
+             kappa: float = KAPPA, initial_active: str = "hertz",
+             rebuild_fraction: float = REBUILD_FRACTION) -> Comparison:
     """Mesh, solve and compare one scene; with ``out``, also write its VTU files and plot.
 
     Parameters
@@ -62,28 +71,48 @@ def validate(scene: Scene, level: int = DEFAULT_LEVEL, out: str | Path | None = 
     scene : Scene
         The bodies, target load and angle (see :mod:`fem_validation.scenes`).
     level : int
-        Mesh level, 0 (coarse, seconds) to 3 (fine); element size in the
-        contact zone LEVEL_H0[level] times the Hertz semi-axis b.
+        Mesh level, 0 (coarse, seconds) to 5 (fine); each level divides every
+        element size by LEVEL_RATIO (sqrt 2); the element size in the contact
+        zone is LEVEL_H0[level] times the Hertz semi-axis b.
     out : path, optional
         Directory for ``<scene>_body1.vtu``, ``<scene>_body2.vtu`` and
         ``<scene>_pressure.png``.
     kappa : float
         Penalty factor (stiffness kappa E*/h0 per unit area).
+    initial_active : {"hertz", "interpenetration", "none", "all", "nested"}
+        First active set of the contact iteration (see
+        :func:`fem_validation.solve.initial_active_set`); "nested" solves
+        NESTED_LEVELS levels coarser from the interpenetration of the
+        undeformed bodies first and starts from that solution's active set.
+    rebuild_fraction : float
+        Rebuild the AMG preconditioner when more than this fraction of the
+        active pairs changed state since its setup (``inf``: build it once).
 
     Returns
     -------
     Comparison
         Errors against Hertz at the force the run reached, with timings.
     """
+    memory.reset_peak()
     t0 = time.perf_counter()
     mesh = build(scene, level)
-    sol = solve_contact(scene, mesh, kappa=kappa)
+    start = initial_active
+    if initial_active == "nested":
+        coarse = build(scene, max(level - NESTED_LEVELS, 0))
+        start = transferred_active_set(
+            coarse, solve_contact(scene, coarse, kappa=kappa, initial_active="interpenetration",
+                                  rebuild_fraction=rebuild_fraction), mesh)
+    sol = solve_contact(scene, mesh, kappa=kappa, initial_active=start,
+                        rebuild_fraction=rebuild_fraction)
     prof = profiles(scene, mesh, sol)
     result = compare_with_hertz(scene, mesh, sol, level, time.perf_counter() - t0, prof)
-    log.info("%s: a %+.2f%%, b %+.2f%%, p0 %+.2f%%, RMS %.2f%% / %.2f%% of p0, force balance "
-             "%.1e, %d dofs, %.1f s", scene.name, 100 * result.a_rel_err, 100 * result.b_rel_err,
-             100 * result.p0_rel_err, 100 * result.rms_major, 100 * result.rms_minor,
-             result.force_rel_err, result.dofs, result.seconds)
+    result.peak_memory_mb = memory.peak_mb()
+    log.info("%s: a %+.2f%%, b %+.2f%%, p0 %+.2f%%, RMS %.2f%% / %.2f%% of p0, edge %+.2f%% / "
+             "%+.2f%%, approach %+.2f%%, %d dofs, %.1f s, %.0f MB", scene.name,
+             100 * result.a_rel_err, 100 * result.b_rel_err, 100 * result.p0_rel_err,
+             100 * result.rms_major, 100 * result.rms_minor, 100 * result.edge_a_rel_err,
+             100 * result.edge_b_rel_err, 100 * result.approach_rel_err, result.dofs,
+             result.seconds, result.peak_memory_mb)
     if out is not None:
         out = Path(out)
         out.mkdir(parents=True, exist_ok=True)

@@ -1,9 +1,9 @@
 """python -m fem_validation: validate hertz against finite elements.
 
-    python -m fem_validation                       # the five default scenes, level 2
-    python -m fem_validation --alpha 2 7 --level 1 # equal steel bodies, alpha = 2 and 7
+    python -m fem_validation                       # the five default scenes, default level
+    python -m fem_validation --alpha 2 7 --level 2 # equal steel bodies, alpha = 2 and 7
     python -m fem_validation --scene crossed-30deg --out DIR
-    python -m fem_validation --study alpha-3 --levels 0 1 2 3
+    python -m fem_validation --study alpha-3 --levels 1 2 3 4 5
 
 Writes DIR/report.json, DIR/report.md, <scene>_body1.vtu, <scene>_body2.vtu and
 <scene>_pressure.png per scene (a study writes study.json, study.md and
@@ -23,16 +23,21 @@ from os import cpu_count
 from pathlib import Path
 
 from . import FEMValidationError, reports, validate
-from .mesh import DEFAULT_LEVEL, LEVEL_H0
+from .mesh import DEFAULT_LEVEL, LEVEL_H0, LEVEL_RATIO, LEVEL_SCALE
 from .scenes import NAMED, default_scenes, equal_steel
-from .study import refinement_study
+from .solve import INITIAL_ACTIVE, REBUILD_FRACTION
+from .study import DEFAULT_LEVELS, refinement_study
 
 log = logging.getLogger("fem_validation")
 
 
 def _scene(name: str):
     if name.startswith("alpha-"):
-        return equal_steel(float(name.removeprefix("alpha-")))
+        try:
+            alpha = float(name.removeprefix("alpha-"))
+        except ValueError:
+            raise ValueError(f"scene {name!r}: alpha-<A> needs a number A") from None
+        return equal_steel(alpha)
     if name in NAMED:
         return NAMED[name]()
     raise ValueError(f"unknown scene {name!r}: use alpha-<A>, {', '.join(NAMED)}")
@@ -61,11 +66,18 @@ def _parser() -> argparse.ArgumentParser:
                    help="equal steel bodies with curvature ratio A (repeatable)")
     p.add_argument("--scene", nargs="+", metavar="NAME", default=[],
                    help=f"named scenes: alpha-<A>, {', '.join(NAMED)}")
-    p.add_argument("--level", type=int, default=DEFAULT_LEVEL, choices=sorted(LEVEL_H0),
-                   help=f"mesh level (element size in the contact zone: {LEVEL_H0} x b)")
+    p.add_argument("--level", type=int, default=DEFAULT_LEVEL, choices=sorted(LEVEL_SCALE),
+                   help=f"mesh level (default {DEFAULT_LEVEL}); each level divides every "
+                        f"element size by {LEVEL_RATIO:.3g}")
     p.add_argument("--study", metavar="NAME", help="mesh-refinement study of one scene")
-    p.add_argument("--levels", type=int, nargs="+", default=[0, 1, 2, 3],
-                   help="levels of the study (default 0 1 2 3)")
+    p.add_argument("--levels", type=int, nargs="+", default=list(DEFAULT_LEVELS),
+                   help=f"consecutive levels of the study (default "
+                        f"{' '.join(map(str, DEFAULT_LEVELS))})")
+    p.add_argument("--initial-active", choices=(*INITIAL_ACTIVE, "nested"), default="hertz",
+                   help="first active set of the contact iteration (default: Hertz's ellipse)")
+    p.add_argument("--amg-rebuild", type=float, default=REBUILD_FRACTION, metavar="FRACTION",
+                   help="rebuild the AMG preconditioner when more than FRACTION of the active "
+                        f"pairs changed since its setup (default {REBUILD_FRACTION}; inf: once)")
     p.add_argument("--out", type=Path, default=Path("fem_out"), help="output directory")
     p.add_argument("--readme", action="store_true",
                    help="also put the table (or the study) into README.md and the plots "
@@ -84,7 +96,8 @@ def main(argv=None) -> int:
         args.out.mkdir(parents=True, exist_ok=True)
         if args.study:
             study = refinement_study(_scene(args.study), args.levels, args.out)
-            print(json.dumps(study["rates"], indent=1))
+            print(json.dumps({k: study[k] for k in ("rates", "extrapolated", "three_level")},
+                             indent=1))
             if args.readme:
                 publish("fem-study", (args.out / "study.md").read_text(),
                         [(args.out / "study.png", f"{study['scene']}_study.png")])
@@ -92,10 +105,11 @@ def main(argv=None) -> int:
         scenes = [equal_steel(a) for a in args.alpha or []] + [_scene(n) for n in args.scene]
         scenes = scenes or default_scenes()
         t0 = time.perf_counter()
-        results = [validate(s, args.level, args.out) for s in scenes]
+        results = [validate(s, args.level, args.out, initial_active=args.initial_active,
+                            rebuild_fraction=args.amg_rebuild) for s in scenes]
         command = " ".join(["python -m fem_validation", *argv])
-        header = (f"Level {args.level} (element size {LEVEL_H0[args.level]} b in the contact "
-                  f"zone); {time.perf_counter() - t0:.0f} s in all on {cpu_count()} cores; "
+        header = (f"Level {args.level} (grid spacing {LEVEL_H0[args.level]:.3g} b at the "
+                  f"contact); {time.perf_counter() - t0:.0f} s in all on {cpu_count()} cores; "
                   f"`{command}`.\n")
         json_path, md_path = reports(results, args.out, header)
         print(md_path.read_text())

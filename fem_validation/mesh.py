@@ -4,10 +4,20 @@ The geometry is parametrised in units of the Hertz minor semi-axis b at the
 scene's target load; node coordinates are returned in metres.  The blocks are
 meshed together so that their faces at z = 0 match node for node; each body
 then gets its own copy of those nodes, and the copies are the contact pairs.
+
+The mesh is structured around the contact (a grid cut into tetrahedra, see
+meshes/blocks.geo), so that every contact node has the same patch of elements,
+and unstructured elsewhere.  Mesh levels scale every element size at once:
+level n uses LEVEL_SCALE[n] times the default level's sizes (grid spacing,
+unstructured size around the grid, its growth with distance, far field), so
+that each level is close to a uniform refinement of the one before, by
+LEVEL_RATIO = sqrt 2.  gmsh runs on one thread with a fixed seed: the same
+scene and level give the same mesh, node for node.
 """
 
 from __future__ import annotations
 
+import importlib.resources
 import logging
 import time
 from dataclasses import dataclass
@@ -21,24 +31,37 @@ from .scenes import Scene
 
 log = logging.getLogger("fem_validation")
 
-def _geometry_path(name: str = "blocks.geo") -> Path:
-    """The geometry: packaged beside the code (where a wheel carries it, copied from meshes/
-    by setup.py), else in the source checkout's meshes/ (the place to read and edit it)."""
-    packaged = Path(__file__).resolve().parent / "meshes" / name
-    return packaged if packaged.is_file() else Path(__file__).resolve().parents[1] / "meshes" / name
+#: The geometry file, looked up by :func:`geometry_file`.
+GEOMETRY = "blocks.geo"
 
-
-GEO = _geometry_path()
-
-#: Element size in the contact zone, in units of b, for each mesh level.
-LEVEL_H0 = {0: 0.4, 1: 0.2, 2: 0.1, 3: 0.05}
-DEFAULT_LEVEL = 3
+#: Refinement between consecutive levels: every element size divides by this.
+LEVEL_RATIO = 2.0 ** 0.5
+DEFAULT_LEVEL = 4
+#: The levels and their size factors relative to the default level.
+LEVEL_SCALE = {n: LEVEL_RATIO ** (DEFAULT_LEVEL - n) for n in range(6)}
+#: Grid spacing of the structured block (across the major axis, and in depth) at the
+#: default level, in units of b.
+HS = 0.05
+#: Largest spacing along the major axis over HS, and the semi-major axis per unit of it:
+#: st = clip(ea / ANISOTROPY_PER_A, 1, MAX_ANISOTROPY).
+MAX_ANISOTROPY = 4.0
+ANISOTROPY_PER_A = 2.0
+#: Unstructured element size around the structured block at the default level [b], and
+#: its growth per unit distance from the zone (both scale with the level).
+H0 = 0.07
+GRADE = 0.1
 #: Block half-width and depth in units of the semi-major axis a.
 EXTENT_OVER_A = 40.0
-#: Element size at the edge of the contact ellipse, relative to h0.
-EDGE_REFINEMENT = 0.5
-#: Depth of the refined zone in units of b.
-ZONE_DEPTH = 0.6
+#: Largest element size at the default level, over the block's half-width.
+HMAX_OVER_EXTENT = 0.25
+#: The structured block covers ZONE times the semi-axes and is ZONE_DEPTH b deep; the
+#: unstructured elements keep the size h0 down to H0_DEPTH b.
+ZONE = 1.25
+ZONE_DEPTH = 0.7
+H0_DEPTH = 1.0
+
+#: Grid spacing of the structured block per level, in units of b.
+LEVEL_H0 = {n: HS * f for n, f in LEVEL_SCALE.items()}
 
 
 @dataclass
@@ -54,6 +77,8 @@ class BlockMesh:
     sym_x, sym_y : tuple of two int arrays, or None
         Nodes of (body 1, body 2) on the symmetry planes x = 0 and y = 0
         (quarter model only).
+    axis : tuple of two int arrays
+        Nodes of (body 1, body 2) on the z axis (x = y = 0), ordered by depth.
     pairs : ndarray of int, shape (n, 2)
         Node of body 1 and node of body 2 at the same point of z = 0.
     pair_area : ndarray, shape (n,)
@@ -61,11 +86,16 @@ class BlockMesh:
     triangles : ndarray of int, shape (m, 3)
         The contact face's triangles, as indices into ``pairs``.
     h0 : float
-        Element size in the contact zone [m].
+        Grid spacing of the structured block across the major axis [m] (sets the
+        penalty stiffness).
     quarter : bool
         True for the quarter model (x >= 0, y >= 0).
     extent, depth : float
         Half-width and depth of each block [m].
+    level : int
+        The mesh level.
+    parameters : dict
+        The ONELAB parameters of meshes/blocks.geo that made it (units of b).
     """
 
     bodies: tuple[MeshTet, MeshTet]
@@ -73,6 +103,7 @@ class BlockMesh:
     bottom: np.ndarray
     sym_x: tuple[np.ndarray, np.ndarray] | None
     sym_y: tuple[np.ndarray, np.ndarray] | None
+    axis: tuple[np.ndarray, np.ndarray]
     pairs: np.ndarray
     pair_area: np.ndarray
     triangles: np.ndarray
@@ -80,113 +111,190 @@ class BlockMesh:
     quarter: bool
     extent: float
     depth: float
+    level: int
+    parameters: dict
 
 
-def mesh_parameters(scene: Scene, level: int) -> dict[str, float]:
-    """ONELAB parameters of meshes/blocks.geo for a scene (lengths in units of b)."""
-    if level not in LEVEL_H0:
-        raise ValueError(f"level must be one of {sorted(LEVEL_H0)}, got {level!r}")
+def geometry_file(name: str = GEOMETRY):
+    """The geometry file ``name``: packaged beside the code, else in the checkout's meshes/.
+
+    Looks first for ``importlib.resources.files("fem_validation") / "meshes" / name``
+    (where a wheel carries it), then for ``meshes/name`` beside the package in a
+    source checkout.
+
+    Returns
+    -------
+    importlib.resources.abc.Traversable or pathlib.Path
+        Use with :func:`importlib.resources.as_file` to get a path on disk.
+
+    Raises
+    ------
+    FEMValidationError
+        If neither exists.
+    """
+    packaged = importlib.resources.files("fem_validation") / "meshes" / name
+    if packaged.is_file():
+        return packaged
+    source = Path(__file__).resolve().parents[1] / "meshes" / name
+    if source.is_file():
+        return source
+    raise FEMValidationError(f"geometry {name!r} not found: neither {packaged} (installed "
+                             f"package) nor {source} (source checkout) exists")
+
+
+def anisotropy(ellipticity: float) -> float:
+    """Spacing along the major axis over the spacing across it in the structured block.
+
+    ``clip(a / b / ANISOTROPY_PER_A, 1, MAX_ANISOTROPY)``: the spacing stays
+    about 2.5% of a along the major axis, at most 4 times the spacing across.
+    """
+    if not ellipticity >= 1:
+        raise ValueError(f"ellipticity must be >= 1, got {ellipticity!r}")
+    return min(max(ellipticity / ANISOTROPY_PER_A, 1.0), MAX_ANISOTROPY)
+
+
+def mesh_parameters(scene: Scene, level: int = DEFAULT_LEVEL) -> dict[str, float]:
+    """ONELAB parameters of meshes/blocks.geo for a scene at a level (lengths in units of b).
+
+    Parameters
+    ----------
+    scene : Scene
+        The scene; its Hertz ellipse at the target load sets the refined zone.
+    level : int
+        Mesh level, a key of :data:`LEVEL_SCALE`; every element size is
+        LEVEL_SCALE[level] times the default level's.
+
+    Returns
+    -------
+    dict
+        L, H, quarter, ea, eb, etheta, zone, zi, hs, st, zz, h0, grade, hmax.
+    """
+    if level not in LEVEL_SCALE:
+        raise ValueError(f"level must be one of {sorted(LEVEL_SCALE)}, got {level!r}")
     c = scene.hertz()
+    f = LEVEL_SCALE[level]
     extent = EXTENT_OVER_A * c.ellipticity
-    h0 = LEVEL_H0[level]
     return {"L": extent, "H": extent, "quarter": 1.0 if scene.symmetric else 0.0,
-            "ea": c.ellipticity, "eb": 1.0, "etheta": c.major_axis_angle, "zone": 1.2,
-            "rz": ZONE_DEPTH, "h0": h0, "he": EDGE_REFINEMENT * h0, "grade": 0.3, "ge": 0.5,
-            "hmax": extent / 4}
-
-
-def _tets_of(gmsh, name: str) -> np.ndarray:
-    tag = _physical(gmsh, 3, name)
-    blocks = []
-    for entity in gmsh.model.getEntitiesForPhysicalGroup(3, tag):
-        types, _, nodes = gmsh.model.mesh.getElements(3, entity)
-        for etype, conn in zip(types, nodes, strict=True):
-            if etype != 4:
-                raise FEMValidationError(f"gmsh returned element type {etype} in {name}, "
-                                         "expected linear tetrahedra (4)")
-            blocks.append(np.asarray(conn, dtype=np.int64).reshape(-1, 4))
-    return np.concatenate(blocks)
+            "ea": c.ellipticity, "eb": 1.0, "etheta": c.major_axis_angle, "zone": ZONE,
+            "zi": ZONE_DEPTH, "hs": HS * f, "st": anisotropy(c.ellipticity),
+            "zz": H0_DEPTH, "h0": H0 * f, "grade": GRADE * f,
+            "hmax": HMAX_OVER_EXTENT * extent * f}
 
 
 def _physical(gmsh, dim: int, name: str) -> int:
     for d, tag in gmsh.model.getPhysicalGroups(dim):
         if gmsh.model.getPhysicalName(d, tag) == name:
             return tag
-    raise FEMValidationError(f"meshes/blocks.geo defines no physical group {name!r} "
+    raise FEMValidationError(f"the geometry defines no physical group {name!r} "
                              f"(dimension {dim})")
 
 
-def _surface_nodes(gmsh, name: str) -> np.ndarray:
-    tags, _ = gmsh.model.mesh.getNodesForPhysicalGroup(2, _physical(gmsh, 2, name))
+def _elements(gmsh, dim: int, name: str, etype: int, nnodes: int) -> np.ndarray:
+    """Connectivity (gmsh node tags) of the elements of one type in a physical group."""
+    blocks = []
+    for entity in gmsh.model.getEntitiesForPhysicalGroup(dim, _physical(gmsh, dim, name)):
+        types, _, nodes = gmsh.model.mesh.getElements(dim, entity)
+        for t, conn in zip(types, nodes, strict=True):
+            if dim == 3 and t != etype:
+                raise FEMValidationError(f"gmsh returned element type {t} in {name}, "
+                                         f"expected linear tetrahedra ({etype})")
+            if t == etype:
+                blocks.append(np.asarray(conn, dtype=np.int64).reshape(-1, nnodes))
+    if not blocks:
+        raise FEMValidationError(f"physical group {name!r} has no elements of type {etype}")
+    return np.concatenate(blocks)
+
+
+def _group_nodes(gmsh, dim: int, name: str) -> np.ndarray:
+    tags, _ = gmsh.model.mesh.getNodesForPhysicalGroup(dim, _physical(gmsh, dim, name))
     return np.asarray(tags, dtype=np.int64)
 
 
-def _surface_triangles(gmsh, name: str) -> np.ndarray:
-    out = []
-    for entity in gmsh.model.getEntitiesForPhysicalGroup(2, _physical(gmsh, 2, name)):
-        types, _, nodes = gmsh.model.mesh.getElements(2, entity)
-        for etype, conn in zip(types, nodes, strict=True):
-            if etype == 2:
-                out.append(np.asarray(conn, dtype=np.int64).reshape(-1, 3))
-    return np.concatenate(out)
+def positively_oriented(p: np.ndarray, t: np.ndarray) -> np.ndarray:
+    """Tetrahedra ``t`` (n, 4) reordered to positive volume on nodes ``p`` (m, 3).
 
-
-def _body_mesh(coords_of, tets: np.ndarray, scale: float):
-    """A MeshTet with its own node numbering, and the map gmsh tag -> local index."""
-    tags = np.unique(tets)
-    local = {int(t): i for i, t in enumerate(tags)}
-    index = np.vectorize(local.__getitem__, otypes=[np.int64])
-    t = index(tets)
-    p = coords_of(tags) * scale
-    # positive orientation for scikit-fem
+    Raises
+    ------
+    FEMValidationError
+        If a tetrahedron is degenerate (zero volume).
+    """
     v = p[t]
-    vol = np.einsum("ij,ij->i", np.cross(v[:, 1] - v[:, 0], v[:, 2] - v[:, 0]), v[:, 3] - v[:, 0])
+    vol = np.einsum("ij,ij->i", np.cross(v[:, 1] - v[:, 0], v[:, 2] - v[:, 0]),
+                    v[:, 3] - v[:, 0])
+    if np.any(vol == 0):
+        raise FEMValidationError(f"{int(np.sum(vol == 0))} degenerate tetrahedra")
+    t = t.copy()
     t[vol < 0] = t[vol < 0][:, [0, 2, 1, 3]]
-    return MeshTet(p.T, t.T), local
+    return t
 
 
-def build(scene: Scene, level: int = DEFAULT_LEVEL) -> BlockMesh:
-    """Mesh the scene's two blocks at a mesh level (0 coarse .. 3 fine)."""
+class _Numbering:
+    """Local node numbers of one body: gmsh tag -> index, -1 where absent."""
+
+    def __init__(self, tets: np.ndarray, max_tag: int):
+        self.tags = np.unique(tets)
+        self.local = np.full(max_tag + 1, -1, dtype=np.int64)
+        self.local[self.tags] = np.arange(len(self.tags))
+
+    def __call__(self, tags: np.ndarray, only_present: bool = False) -> np.ndarray:
+        out = self.local[tags]
+        if only_present:
+            return out[out >= 0]
+        if np.any(out < 0):
+            raise FEMValidationError("a boundary node is not a node of its body's mesh")
+        return out
+
+
+def build(scene: Scene, level: int = DEFAULT_LEVEL, parameters: dict | None = None,
+          ) -> BlockMesh:
+    """Mesh the scene's two blocks at a mesh level.
+
+    Parameters
+    ----------
+    scene : Scene
+        The scene to mesh.
+    level : int
+        Mesh level (keys of :data:`LEVEL_SCALE`; 0 coarse).
+    parameters : dict, optional
+        Overrides of :func:`mesh_parameters` (units of b), for experiments.
+
+    Returns
+    -------
+    BlockMesh
+
+    Raises
+    ------
+    FEMValidationError
+        If gmsh fails or the geometry lacks a physical group the solver needs.
+    """
     import gmsh
 
-    if not GEO.exists():
-        raise FEMValidationError(f"scene geometry {GEO} not found: fem_validation runs from "
-                                 "a source checkout (pip install -e '.[fem]')")
-    params = mesh_parameters(scene, level)
+    params = {**mesh_parameters(scene, level), **(parameters or {})}
     b = scene.hertz().b
     t0 = time.perf_counter()
     gmsh.initialize(interruptible=False)
     try:
         gmsh.option.setNumber("General.Terminal", 0)
-        gmsh.option.setNumber("General.NumThreads", 2)
         for key, value in params.items():
-            gmsh.onelab.setNumber(f"Parameters/{key}", [value])
-        gmsh.open(str(GEO))
+            gmsh.onelab.setNumber(f"Parameters/{key}", [float(value)])
+        with importlib.resources.as_file(geometry_file()) as geo:
+            gmsh.open(str(geo))
+        # after the file, so that it cannot override: deterministic meshes
+        gmsh.option.setNumber("General.NumThreads", 1)
+        gmsh.option.setNumber("Mesh.RandomSeed", 1)
         gmsh.model.mesh.generate(3)
         tags, xyz, _ = gmsh.model.mesh.getNodes()
         tags = np.asarray(tags, dtype=np.int64)
-        order = np.argsort(tags)
-        tags, xyz = tags[order], np.asarray(xyz).reshape(-1, 3)[order]
-
-        def coords_of(t):
-            return xyz[np.searchsorted(tags, t)]
-
-        mesh1, local1 = _body_mesh(coords_of, _tets_of(gmsh, "body1"), b)
-        mesh2, local2 = _body_mesh(coords_of, _tets_of(gmsh, "body2"), b)
-        contact_tags = _surface_nodes(gmsh, "contact")
-        pairs = np.array([[local1[int(t)], local2[int(t)]] for t in contact_tags], dtype=np.int64)
-        pair_of = {int(t): i for i, t in enumerate(contact_tags)}
-        tri = np.vectorize(pair_of.__getitem__, otypes=[np.int64])(
-            _surface_triangles(gmsh, "contact"))
-        top = np.array([local1[int(t)] for t in _surface_nodes(gmsh, "top")], dtype=np.int64)
-        bottom = np.array([local2[int(t)] for t in _surface_nodes(gmsh, "bottom")],
-                          dtype=np.int64)
-        sym = {}
+        coords = np.zeros((tags.max() + 1, 3))
+        coords[tags] = np.asarray(xyz).reshape(-1, 3)
+        tets = [_elements(gmsh, 3, name, 4, 4) for name in ("body1", "body2")]
+        contact = _group_nodes(gmsh, 2, "contact")
+        face = _elements(gmsh, 2, "contact", 2, 3)
+        boundary = {name: _group_nodes(gmsh, 2, name) for name in ("top", "bottom")}
         if params["quarter"]:
             for name in ("sym_x", "sym_y"):
-                nodes = _surface_nodes(gmsh, name)
-                sym[name] = (np.array([local1[int(t)] for t in nodes if int(t) in local1]),
-                             np.array([local2[int(t)] for t in nodes if int(t) in local2]))
+                boundary[name] = _group_nodes(gmsh, 2, name)
+        axis = _group_nodes(gmsh, 1, "axis")
     except FEMValidationError:
         raise
     except Exception as exc:  # gmsh reports its failures as plain Exceptions
@@ -194,20 +302,52 @@ def build(scene: Scene, level: int = DEFAULT_LEVEL) -> BlockMesh:
                                  f"(parameters {params}): {exc}") from exc
     finally:
         gmsh.finalize()
+    seconds = time.perf_counter() - t0
 
-    xy = mesh1.p[:2, pairs[:, 0]].T
-    area = _lumped_area(xy, tri)
-    out = BlockMesh((mesh1, mesh2), top, bottom, sym.get("sym_x"), sym.get("sym_y"), pairs,
-                    area, tri, params["h0"] * b, bool(params["quarter"]), params["L"] * b,
-                    params["H"] * b)
+    coords *= b
+    numbering = [_Numbering(t, len(coords) - 1) for t in tets]
+    bodies = tuple(_body(coords, n, t) for n, t in zip(numbering, tets, strict=True))
+    pairs = np.column_stack([numbering[0](contact), numbering[1](contact)])
+    pair_of = np.full(len(coords), -1, dtype=np.int64)
+    pair_of[contact] = np.arange(len(contact))
+    triangles = pair_of[face]
+    sym = {}
+    if params["quarter"]:
+        for name in ("sym_x", "sym_y"):
+            sym[name] = tuple(n(boundary[name], only_present=True) for n in numbering)
+    axis_nodes = []
+    for i, n in enumerate(numbering):
+        nodes = n(axis, only_present=True)
+        depth = np.abs(bodies[i].p[2, nodes])
+        axis_nodes.append(nodes[np.argsort(depth, kind="stable")])
+    xy = bodies[0].p[:2, pairs[:, 0]].T
+    out = BlockMesh(bodies, numbering[0](boundary["top"]), numbering[1](boundary["bottom"]),
+                    sym.get("sym_x"), sym.get("sym_y"), tuple(axis_nodes), pairs,
+                    lumped_area(xy, triangles), triangles, params["hs"] * b,
+                    bool(params["quarter"]), params["L"] * b, params["H"] * b, level, params)
     log.info("%s: meshed level %d in %.1f s: %d + %d tetrahedra, %d contact pairs, "
-             "h0 = %.3g b", scene.name, level, time.perf_counter() - t0, mesh1.nelements,
-             mesh2.nelements, len(pairs), params["h0"])
+             "spacing %.3g b x %.3g", scene.name, level, seconds, bodies[0].nelements,
+             bodies[1].nelements, len(pairs), params["hs"], params["st"])
     return out
 
 
-def _lumped_area(xy: np.ndarray, tri: np.ndarray) -> np.ndarray:
-    """Each node's third of the area of its triangles (the P1 lumped face mass)."""
+def _body(coords: np.ndarray, numbering: _Numbering, tets: np.ndarray) -> MeshTet:
+    """A MeshTet with the body's own node numbering, positively oriented."""
+    p = coords[numbering.tags]
+    t = positively_oriented(p, numbering(tets))
+    return MeshTet(np.ascontiguousarray(p.T), np.ascontiguousarray(t.T))
+
+
+def lumped_area(xy: np.ndarray, tri: np.ndarray) -> np.ndarray:
+    """Each node's third of the area of its triangles (the P1 lumped face mass) [m**2].
+
+    Parameters
+    ----------
+    xy : ndarray, shape (n, 2)
+        Node coordinates [m].
+    tri : ndarray of int, shape (m, 3)
+        Triangles as indices into ``xy``.
+    """
     d1, d2 = xy[tri[:, 1]] - xy[tri[:, 0]], xy[tri[:, 2]] - xy[tri[:, 0]]
     tri_area = 0.5 * np.abs(d1[:, 0] * d2[:, 1] - d1[:, 1] * d2[:, 0])
     area = np.zeros(len(xy))

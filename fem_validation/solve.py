@@ -1,20 +1,25 @@
 """Small-strain elasticity of both blocks with frictionless penalty contact.
 
-Each body is discretised with linear tetrahedra (scikit-fem).  A contact pair
-(node i1 of body 1, node i2 of body 2, at the same point of z = 0) has the gap
+Each body is discretised with linear tetrahedra (fem_validation.elasticity).  A
+contact pair (node i1 of body 1, node i2 of body 2, at the same point of z = 0)
+has the gap
 
     g = g0(x, y) + u1z(i1) - u2z(i2),   g0 = (x, y) S (x, y)^T / 2,
 
 with S the relative curvature tensor of the scene: Hertz's quadratic gap
 between two half-spaces.  An active pair (g < 0) carries the penalty force
-k (-g), k = kappa E* A / h0 (A its lumped area, h0 the element size there),
-so that the pressure is kappa E* (-g) / h0.  The active set is iterated until
-it no longer changes.  Body 1's top face is moved down by the imposed
-approach, body 2's bottom face is fixed, and the symmetry planes of a
-quarter model carry zero normal displacement.  Linear systems are solved by
-conjugate gradients preconditioned with pyamg's smoothed aggregation (3x3
-blocks, the 6 rigid-body modes as near-nullspace; measured: 2.5x fewer
-coarse unknowns and faster than one set of 6 modes per body).
+k (-g), k = kappa E* A / h0 (A its lumped area, h0 the element size in the
+contact zone), so that the pressure is kappa E* (-g) / h0.  The active set is
+iterated until it no longer changes.  Body 1's top face is moved down by the
+imposed approach, body 2's bottom face is fixed, and the symmetry planes of a
+quarter model carry zero normal displacement.
+
+Linear systems are solved by conjugate gradients preconditioned with pyamg's
+smoothed aggregation (3x3 blocks, the translations as near-nullspace).
+The preconditioner is built on the first active set and rebuilt when more than
+REBUILD_FRACTION of the pairs active when it was built have changed state:
+the penalty springs are far stiffer than the elements, so a preconditioner
+built for another contact area leaves CG with slowly converging modes there.
 """
 
 from __future__ import annotations
@@ -27,54 +32,52 @@ import numpy as np
 import pyamg
 from scipy import sparse
 from scipy.sparse.linalg import cg
-from skfem import Basis, BilinearForm, ElementTetP1, ElementVector, asm
-from skfem.helpers import ddot, sym_grad, trace
 
+from .elasticity import rigid_body_modes, stiffness
 from .errors import FEMValidationError
 from .mesh import BlockMesh
 from .scenes import Scene
 
 log = logging.getLogger("fem_validation")
 
-#: Penalty factor; measured: kappa = 100 gives a penetration of 4e-4 of the approach and
-#: changes a, b, p0 by < 0.05% against kappa = 1000, with half the CG iterations.
+#: Penalty factor; measured: kappa = 100 gives a penetration of about 4e-4 of the approach
+#: and changes a, b, p0 by < 0.05% against kappa = 1000, with half the CG iterations.
 KAPPA = 100.0
 CG_RTOL = 1e-9
-MAX_ACTIVE_SET_ITERATIONS = 30
-
-
-@BilinearForm
-def elasticity(u, v, w):
-    """Isotropic linear elasticity: sigma = 2 mu eps + lmbda tr(eps) I."""
-    eu, ev = sym_grad(u), sym_grad(v)
-    return 2.0 * w.mu * ddot(eu, ev) + w.lmbda * trace(eu) * trace(ev)
-
-
-def lame(E: float, nu: float) -> tuple[float, float]:
-    """(mu, lmbda) from Young's modulus and Poisson's ratio."""
-    return E / (2 * (1 + nu)), E * nu / ((1 + nu) * (1 - 2 * nu))
+CG_MAXITER = 3000
+MAX_ACTIVE_SET_ITERATIONS = 40
+#: Rebuild the AMG preconditioner when more than this fraction of the pairs active at its
+#: setup have changed state since.
+REBUILD_FRACTION = 0.05
+#: pyamg's prolongation smoothing, coarsest size and near-nullspace (the first AMG_MODES
+#: rigid-body modes: the translations).  Measured on alpha-3, level 4 (211k dofs, one
+#: accurate solve): setup 2.6 s and 32 CG iterations of 0.30 s with the 3 translations,
+#: against 5.9 s and 25 of 0.37 s with all 6 modes and 9.3 s and 34 of 0.30 s with pyamg's
+#: defaults; a cheap setup matters when the active set changes and it is rebuilt.  The
+#: coarsest level is solved by sparse LU (pyamg's default pseudo-inverse costs 0.9 s there).
+AMG_SMOOTH = "energy"
+AMG_MAX_COARSE = 500
+AMG_MODES = 3
+#: While the active set still changes by more than SETTLED_FRACTION of its pairs, each
+#: solve only reduces its residual LOOSE_REDUCTION times (CG's work per decade of residual
+#: is about the same, so loose solves followed by an accurate one cost about what one
+#: accurate solve does).
+LOOSE_REDUCTION = 1e-3
+SETTLED_FRACTION = 0.05
+#: First active sets: Hertz's ellipse at the target load, the rigid interpenetration of
+#: the undeformed bodies (g0 < approach), no pair, every pair.
+INITIAL_ACTIVE = ("hertz", "interpenetration", "none", "all")
 
 
 def boussinesq_settlement(load: float, E: float, nu: float, depth: float) -> float:
     """Displacement of a half-space under a point load at depth ``depth`` on its axis [m].
 
-    u = P (1 + nu)(3 - 2 nu) / (2 pi E depth): what a block clamped at that
-    depth does not show, to be added to its approach.
+    u = P (1 + nu)(3 - 2 nu) / (2 pi E depth), P [N], E [Pa]: what a block
+    clamped at that depth does not show, to be added to its approach.
     """
+    if not depth > 0:
+        raise ValueError(f"depth must be > 0, got {depth!r}")
     return load * (1 + nu) * (3 - 2 * nu) / (2 * np.pi * E * depth)
-
-
-def rigid_body_modes(p: np.ndarray) -> np.ndarray:
-    """The 6 rigid-body displacement fields of nodes p (3, n), dofs interleaved."""
-    n = p.shape[1]
-    modes = np.zeros((3 * n, 6))
-    x, y, z = p
-    for c in range(3):
-        modes[c::3, c] = 1.0
-    modes[1::3, 3], modes[2::3, 3] = -z, y
-    modes[0::3, 4], modes[2::3, 4] = z, -x
-    modes[0::3, 5], modes[1::3, 5] = -y, x
-    return modes
 
 
 @dataclass
@@ -82,20 +85,48 @@ class ContactSolution:
     """Displacements, contact state and solver statistics of one run.
 
     Forces are for the whole contact (the quarter model's are multiplied by 4).
+
+    Attributes
+    ----------
+    u1, u2 : ndarray, shape (n1, 3), (n2, 3)
+        Displacements of body 1 and body 2 [m].
+    gap : ndarray, shape (n_pairs,)
+        Final gap [m] (negative: penetration of an active pair).
+    pressure : ndarray, shape (n_pairs,)
+        Contact pressure [Pa], kappa E* (-gap) / h0 on active pairs, else 0.
+    active : ndarray of bool, shape (n_pairs,)
+    force : float
+        Total contact force [N].
+    top_reaction : float
+        Force on body 1's loaded face [N]: equal to ``force`` up to the CG
+        residual (a solver diagnostic, not a check of the model).
+    approach : float
+        Imposed approach of the far faces [m].
+    penalty : float
+        kappa E* / h0 [Pa/m].
+    dofs : int
+    active_set_iterations : int
+    cg_iterations : list of int
+        Per active-set iteration.
+    amg_setups : int
+        Number of times the preconditioner was built.
+    seconds : dict
+        Wall time of the stages [s].
     """
 
-    u1: np.ndarray  # (n1, 3) displacement of body 1 [m]
-    u2: np.ndarray  # (n2, 3) displacement of body 2 [m]
-    gap: np.ndarray  # (n_pairs,) final gap [m]
-    pressure: np.ndarray  # (n_pairs,) contact pressure [Pa]
-    active: np.ndarray  # (n_pairs,) bool
-    force: float  # total contact force [N]
-    top_reaction: float  # force on body 1's top face [N]
-    approach: float  # imposed approach of the far faces [m]
-    penalty: float  # kappa E*/h0 [Pa/m]
+    u1: np.ndarray
+    u2: np.ndarray
+    gap: np.ndarray
+    pressure: np.ndarray
+    active: np.ndarray
+    force: float
+    top_reaction: float
+    approach: float
+    penalty: float
     dofs: int
     active_set_iterations: int
     cg_iterations: list[int] = field(default_factory=list)
+    amg_setups: int = 0
     seconds: dict[str, float] = field(default_factory=dict)
 
 
@@ -107,32 +138,61 @@ def gap0(scene: Scene, xy: np.ndarray) -> np.ndarray:
 
 
 def imposed_approach(scene: Scene, mesh: BlockMesh) -> float:
-    """Approach of the far faces that should give the scene's load: Hertz's delta
+    """Approach of the far faces that should give the scene's load [m]: Hertz's delta
     less the Boussinesq settlement the clamped blocks do not show."""
     c = scene.hertz()
     return c.delta - sum(boussinesq_settlement(scene.load, b.E, b.nu, mesh.depth)
                          for b in (scene.body1, scene.body2))
 
 
+def initial_active_set(scene: Scene, xy: np.ndarray, approach: float,
+                       how: str = "hertz") -> np.ndarray:
+    """The first active set of the iteration.
+
+    Parameters
+    ----------
+    scene : Scene
+    xy : ndarray, shape (n, 2)
+        Positions of the contact pairs [m].
+    approach : float
+        Imposed approach [m].
+    how : {"hertz", "interpenetration", "none", "all"}
+        Hertz's ellipse at the target load; the pairs where the undeformed
+        bodies would overlap (g0 < approach); no pair; every pair.
+    """
+    if how == "hertz":
+        c = scene.hertz()
+        t = c.major_axis_angle
+        major = xy[:, 0] * np.cos(t) + xy[:, 1] * np.sin(t)
+        minor = -xy[:, 0] * np.sin(t) + xy[:, 1] * np.cos(t)
+        return (major / c.a) ** 2 + (minor / c.b) ** 2 < 1.0
+    if how == "interpenetration":
+        return gap0(scene, xy) < approach
+    if how == "none":
+        return np.zeros(len(xy), dtype=bool)
+    if how == "all":
+        return np.ones(len(xy), dtype=bool)
+    raise ValueError(f"initial_active must be one of {INITIAL_ACTIVE}, got {how!r}")
+
+
 class _System:
-    """The assembled two-body system; contact terms are added per active set."""
+    """The assembled two-body system; contact springs are added per active set.
+
+    Dirichlet dofs are eliminated symmetrically (rows and columns cleared, unit
+    diagonal); the contact dofs are never Dirichlet dofs.
+    """
 
     def __init__(self, scene: Scene, mesh: BlockMesh, approach: float):
         self.mesh = mesh
         m1, m2 = mesh.bodies
         self.n1 = 3 * m1.nvertices
         self.n = self.n1 + 3 * m2.nvertices
-        blocks = []
-        for m, body in zip(mesh.bodies, (scene.body1, scene.body2), strict=True):
-            mu, lmbda = lame(body.E, body.nu)
-            basis = Basis(m, ElementVector(ElementTetP1()), intorder=1)
-            blocks.append(asm(elasticity, basis, mu=mu, lmbda=lmbda))
-        self.K1 = blocks[0]
-        self.K = sparse.block_diag(blocks, format="csr")
-        self.B = np.vstack([rigid_body_modes(m1.p), rigid_body_modes(m2.p)])
-        # Dirichlet dofs and values
-        fixed = [3 * mesh.top[:, None] + np.arange(3), self.n1 + 3 * mesh.bottom[:, None]
-                 + np.arange(3)]
+        self.K1 = stiffness(m1.p, m1.t, scene.body1.E, scene.body1.nu)
+        K = sparse.block_diag([self.K1, stiffness(m2.p, m2.t, scene.body2.E, scene.body2.nu)],
+                              format="csr")
+        self.B = np.vstack([rigid_body_modes(m1.p), rigid_body_modes(m2.p)])[:, :AMG_MODES]
+        fixed = [3 * mesh.top[:, None] + np.arange(3),
+                 self.n1 + 3 * mesh.bottom[:, None] + np.arange(3)]
         values = np.zeros(self.n)
         values[3 * mesh.top + 2] = -approach
         for plane, comp in ((mesh.sym_x, 0), (mesh.sym_y, 1)):
@@ -140,79 +200,137 @@ class _System:
                 fixed += [3 * plane[0] + comp, self.n1 + 3 * plane[1] + comp]
         self.fixed = np.unique(np.concatenate([f.ravel() for f in fixed]))
         self.values = values
-        self.keep = np.ones(self.n)
-        self.keep[self.fixed] = 0.0
+        keep = np.ones(self.n)
+        keep[self.fixed] = 0.0
+        self.keep = keep
         self.dz1 = 3 * mesh.pairs[:, 0] + 2
         self.dz2 = self.n1 + 3 * mesh.pairs[:, 1] + 2
+        if np.any(keep[self.dz1] == 0) or np.any(keep[self.dz2] == 0):
+            raise FEMValidationError("a contact dof is also a Dirichlet dof")
+        self.load = -keep * (K @ values)
+        rows = np.repeat(np.arange(self.n), np.diff(K.indptr))
+        K.data *= keep[rows] * keep[K.indices]  # clear the Dirichlet rows and columns
+        self.K = (K + sparse.diags(1.0 - keep)).tocsr()
+        self.K.sort_indices()
 
     def matrix_and_rhs(self, k: np.ndarray, g0: np.ndarray):
-        """System with penalty springs k (zero for inactive pairs), Dirichlet rows applied
-        symmetrically (rows and columns cleared, unit diagonal)."""
+        """System with penalty springs k (zero for inactive pairs) [N/m]."""
         rows = np.concatenate([self.dz1, self.dz2, self.dz1, self.dz2])
         cols = np.concatenate([self.dz1, self.dz2, self.dz2, self.dz1])
         vals = np.concatenate([k, k, -k, -k])
         A = self.K + sparse.csr_matrix((vals, (rows, cols)), shape=(self.n, self.n))
-        b = np.zeros(self.n)
-        np.add.at(b, self.dz1, -k * g0)
-        np.add.at(b, self.dz2, k * g0)
-        b -= A @ self.values
-        keep = sparse.diags(self.keep)
-        A = (keep @ A @ keep + sparse.diags(1.0 - self.keep)).tocsr()
-        b = self.keep * b + (1.0 - self.keep) * self.values
+        b = self.load.copy()
+        b[self.dz1] -= k * g0
+        b[self.dz2] += k * g0
+        b[self.fixed] = self.values[self.fixed]
         return A, b
 
 
+def transferred_active_set(coarse: BlockMesh, coarse_sol: ContactSolution,
+                           fine: BlockMesh) -> np.ndarray:
+    """Active set of ``fine``'s pairs from a solution on a coarser mesh of the same scene.
+
+    A fine pair is active where the coarse gap, interpolated linearly on the
+    coarse contact face, is negative (nested iteration: a start that needs
+    neither Hertz's ellipse nor many iterations on the fine mesh).
+    """
+    import matplotlib.tri as mtri
+
+    cxy = coarse.bodies[0].p[:2, coarse.pairs[:, 0]].T
+    fxy = fine.bodies[0].p[:2, fine.pairs[:, 0]].T
+    tri = mtri.Triangulation(cxy[:, 0], cxy[:, 1], coarse.triangles)
+    gap = mtri.LinearTriInterpolator(tri, coarse_sol.gap)(fxy[:, 0], fxy[:, 1])
+    return np.asarray(np.ma.filled(gap, 1.0) < 0)
+
+
+def _amg(A, B):
+    ml = pyamg.smoothed_aggregation_solver(A.tobsr(blocksize=(3, 3)), B=B,
+                                           symmetry="symmetric", smooth=AMG_SMOOTH,
+                                           improve_candidates=None, max_coarse=AMG_MAX_COARSE,
+                                           coarse_solver="splu")
+    return ml.aspreconditioner(cycle="V")
+
+
 def solve_contact(scene: Scene, mesh: BlockMesh, approach: float | None = None,
-          kappa: float = KAPPA) -> ContactSolution:
-    """Solve the contact problem of ``scene`` on ``mesh`` at an imposed approach [m].
+                  kappa: float = KAPPA, initial_active: str | np.ndarray = "hertz",
+                  rebuild_fraction: float = REBUILD_FRACTION) -> ContactSolution:
+    """Solve the contact problem of ``scene`` on ``mesh`` at an imposed approach.
+
+    Parameters
+    ----------
+    scene : Scene
+    mesh : BlockMesh
+    approach : float, optional
+        Approach of the far faces [m]; default :func:`imposed_approach`.
+    kappa : float
+        Penalty factor (stiffness kappa E*/h0 per unit area).
+    initial_active : {"hertz", "interpenetration", "none", "all"} or array of bool
+        First active set (see :func:`initial_active_set`), or one flag per pair.
+    rebuild_fraction : float
+        Rebuild the preconditioner when more than this fraction of the pairs
+        active at its setup (at least one pair) have changed state; ``inf``
+        builds it once.
 
     Raises
     ------
+    ValueError
+        For a bad kappa, initial_active or rebuild_fraction.
     FEMValidationError
         If the active set cycles or does not settle in
         MAX_ACTIVE_SET_ITERATIONS, or conjugate gradients do not converge.
     """
+    if not kappa > 0:
+        raise ValueError(f"kappa must be > 0, got {kappa!r}")
+    if not rebuild_fraction > 0:
+        raise ValueError(f"rebuild_fraction must be > 0, got {rebuild_fraction!r}")
     seconds = {}
     t0 = time.perf_counter()
     if approach is None:
         approach = imposed_approach(scene, mesh)
+    xy = mesh.bodies[0].p[:2, mesh.pairs[:, 0]].T
+    if isinstance(initial_active, str):
+        active = initial_active_set(scene, xy, approach, initial_active)
+    else:
+        active = np.asarray(initial_active, dtype=bool)
+        if active.shape != (len(xy),):
+            raise ValueError(f"initial_active must have one flag per contact pair "
+                             f"({len(xy)}), got shape {active.shape}")
     system = _System(scene, mesh, approach)
     seconds["assembly"] = time.perf_counter() - t0
     penalty = kappa * scene.e_star / mesh.h0
     k_all = penalty * mesh.pair_area
-    xy = mesh.bodies[0].p[:2, mesh.pairs[:, 0]].T
     g0 = gap0(scene, xy)
-    # start from the Hertz ellipse (enlarged a little)
-    c = scene.hertz()
-    rot = np.array([[np.cos(c.major_axis_angle), np.sin(c.major_axis_angle)],
-                    [-np.sin(c.major_axis_angle), np.cos(c.major_axis_angle)]])
-    local = xy @ rot.T
-    active = (local[:, 0] / c.a) ** 2 + (local[:, 1] / c.b) ** 2 < 1.0
-    seen = []
     x = np.zeros(system.n)
     x[system.fixed] = system.values[system.fixed]
-    cg_iterations = []
-    preconditioner = None
+    cg_iterations, seen = [], []
+    preconditioner, built_on, setups = None, None, 0
+    # Loose solves until the active set changes little; the first solve is accurate
+    # only from Hertz's ellipse, which is usually the final set already.
+    accurate = isinstance(initial_active, str) and initial_active == "hertz"
+    seconds["amg setup"] = seconds["cg"] = 0.0
     for iteration in range(1, MAX_ACTIVE_SET_ITERATIONS + 1):
         t1 = time.perf_counter()
         A, b = system.matrix_and_rhs(np.where(active, k_all, 0.0), g0)
-        if preconditioner is None:
-            # Built once: later active sets differ in a few penalty springs, and the
-            # warm-started CG needs fewer iterations than a new setup would cost.
-            ml = pyamg.smoothed_aggregation_solver(A.tobsr(blocksize=(3, 3)), B=system.B,
-                                                   symmetry="symmetric")
-            preconditioner = ml.aspreconditioner(cycle="V")
-            seconds["amg setup"] = time.perf_counter() - t1
+        if preconditioner is None or (np.sum(active != built_on)
+                                      > rebuild_fraction * max(built_on.sum(), 1)):
+            preconditioner, built_on = _amg(A, system.B), active.copy()
+            setups += 1
+            seconds["amg setup"] += time.perf_counter() - t1
         count = [0]
 
         def step(_xk, count=count):
             count[0] += 1
 
         t2 = time.perf_counter()
-        x, info = cg(A, b, x0=x, rtol=CG_RTOL, maxiter=2000, M=preconditioner, callback=step)
-        seconds["cg"] = seconds.get("cg", 0.0) + time.perf_counter() - t2
-        residual = np.linalg.norm(b - A @ x) / np.linalg.norm(b)
-        if info != 0 or not residual < 10 * CG_RTOL:
+        bnorm = np.linalg.norm(b)
+        # accurate: |r| <= CG_RTOL |b|; loose: the residual reduced LOOSE_REDUCTION times
+        atol = 0.0 if accurate else LOOSE_REDUCTION * np.linalg.norm(b - A @ x)
+        x, info = cg(A, b, x0=x, rtol=CG_RTOL, atol=atol, maxiter=CG_MAXITER,
+                     M=preconditioner, callback=step)
+        seconds["cg"] += time.perf_counter() - t2
+        residual = np.linalg.norm(b - A @ x) / bnorm
+        rtol = max(CG_RTOL, atol / bnorm)
+        if info != 0 or not residual < 10 * rtol:
             raise FEMValidationError(
                 f"{scene.name}: conjugate gradients did not converge at active-set iteration "
                 f"{iteration} (info {info}, {count[0]} iterations, relative residual "
@@ -222,16 +340,18 @@ def solve_contact(scene: Scene, mesh: BlockMesh, approach: float | None = None,
         new_active = gap < 0
         changed = int(np.sum(new_active != active))
         log.info("%s: active-set iteration %d: %d active pairs, %d changed, %d CG iterations "
-                 "(%.1f s)", scene.name, iteration, new_active.sum(), changed, count[0],
-                 time.perf_counter() - t1)
-        if changed == 0:
+                 "to %.0e (%.1f s)", scene.name, iteration, new_active.sum(), changed, count[0],
+                 rtol, time.perf_counter() - t1)
+        if changed == 0 and accurate:
             break
-        if any(np.array_equal(new_active, s) for s in seen):
+        if accurate and any(np.array_equal(new_active, s) for s in seen):
             raise FEMValidationError(
                 f"{scene.name}: the active set cycles at iteration {iteration} "
                 f"({new_active.sum()} active pairs, {changed} changing); "
                 f"try a finer mesh or a smaller penalty (kappa = {kappa:g})")
-        seen.append(active)
+        if accurate:
+            seen.append(active)
+        accurate = changed <= SETTLED_FRACTION * max(new_active.sum(), 1)
         active = new_active
     else:
         raise FEMValidationError(
@@ -246,4 +366,4 @@ def solve_contact(scene: Scene, mesh: BlockMesh, approach: float | None = None,
     seconds["solve"] = time.perf_counter() - t0
     return ContactSolution(u1, u2, gap, np.where(active, penalty * -gap, 0.0), active, force,
                            top_reaction, approach, penalty, system.n, iteration, cg_iterations,
-                           seconds)
+                           setups, seconds)

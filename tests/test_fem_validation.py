@@ -2,42 +2,106 @@
 
 Needs the ``fem`` extra; deliberately not skipped without it, so that a CI run
 cannot pass without running the finite elements.
+
+The slow tests' tolerances are about 1.5 times the errors observed at the
+default level (with a floor of 0.05% for errors that happen to be tiny), so
+that a Hertz reference 1-2% off fails them (test_a_wrong_reference_fails).
 """
 
 import json
 import math
 import subprocess
 import sys
+from pathlib import Path
 
 import meshio
 import numpy as np
 import pytest
-from skfem import Basis, ElementTetP1, ElementVector, asm
+from skfem import Basis, BilinearForm, ElementTetP1, ElementVector, MeshTet, asm
+from skfem.helpers import ddot, sym_grad, trace
 
 import fem_validation as fv
 import fem_validation.compare as fvc
+import fem_validation.elasticity as fve
 import fem_validation.mesh as fvm
+import fem_validation.output as fvo
 import fem_validation.solve as fvs
+import fem_validation.study as fvst
 import hertz
 
 
 @pytest.fixture(scope="module")
 def coarse():
-    """alpha = 3 at mesh level 0: mesh, solution and comparison (a few seconds)."""
+    """alpha = 3 at mesh level 0: mesh, solution and comparison (a second or two)."""
     scene = fv.equal_steel(3)
     mesh = fvm.build(scene, 0)
     sol = fvs.solve_contact(scene, mesh)
     return scene, mesh, sol, fvc.compare_with_hertz(scene, mesh, sol, 0, 0.0)
 
 
-def test_rigid_body_modes_are_the_stiffness_nullspace(coarse):
-    _, mesh, _, _ = coarse
-    m = mesh.bodies[0]
-    mu, lmbda = fvs.lame(210e9, 0.3)
-    K = asm(fvs.elasticity, Basis(m, ElementVector(ElementTetP1()), intorder=1), mu=mu,
-            lmbda=lmbda)
-    modes = fvs.rigid_body_modes(m.p)
+@pytest.fixture(scope="module")
+def crossed_coarse():
+    """The crossed scene (whole model, rotated ellipse) at level 0: its mesh only."""
+    scene = fv.crossed_30deg()
+    return scene, fvm.build(scene, 0)
+
+
+# --- elasticity ------------------------------------------------------------------------
+
+
+def _distorted_box():
+    m = MeshTet.init_tensor(np.linspace(0, 1, 5) ** 1.5, np.linspace(0, 2, 4),
+                            np.linspace(0, 1, 4))
+    return MeshTet(m.p + 0.02 * np.sin(7 * m.p[[1, 2, 0]]), m.t)
+
+
+def test_stiffness_matches_scikit_fem():
+    @BilinearForm
+    def elasticity(u, v, w):
+        eu, ev = sym_grad(u), sym_grad(v)
+        return 2.0 * w.mu * ddot(eu, ev) + w.lmbda * trace(eu) * trace(ev)
+
+    m = _distorted_box()
+    mu, lmbda = fve.lame(210e9, 0.3)
+    reference = asm(elasticity, Basis(m, ElementVector(ElementTetP1()), intorder=1), mu=mu,
+                    lmbda=lmbda)
+    K = fve.stiffness(m.p, m.t, 210e9, 0.3)
+    assert abs(K - reference).max() <= 1e-13 * abs(reference).max()
+
+
+def test_rigid_body_modes_are_the_stiffness_nullspace():
+    m = _distorted_box()
+    K = fve.stiffness(m.p, m.t, 210e9, 0.3)
+    modes = fve.rigid_body_modes(m.p)
     assert np.abs(K @ modes).max() <= 1e-6 * abs(K).max() * np.abs(modes).max()
+
+
+def test_stress_of_a_linear_displacement_is_exact():
+    m = _distorted_box()
+    grad = np.array([[1.0, 2.0, 0.5], [-1.0, 0.3, 0.0], [0.2, 0.4, -0.7]]) * 1e-4
+    u = (grad @ m.p).T
+    E, nu = 70e9, 0.33
+    mu, lmbda = fve.lame(E, nu)
+    eps = 0.5 * (grad + grad.T)
+    expected = 2 * mu * eps + lmbda * np.trace(eps) * np.eye(3)
+    stress = fve.element_stress(m.p, m.t, u, E, nu)
+    np.testing.assert_allclose(stress, np.broadcast_to(expected, stress.shape),
+                               rtol=1e-10, atol=1e-10 * abs(expected).max())
+    nodal = fve.nodal_average(m.p, m.t, stress)
+    np.testing.assert_allclose(nodal, np.broadcast_to(expected, nodal.shape),
+                               rtol=1e-10, atol=1e-10 * abs(expected).max())
+    uniaxial = np.zeros((3, 3))
+    uniaxial[0, 0] = 5.0
+    assert fve.von_mises(uniaxial) == pytest.approx(5.0)
+
+
+@pytest.mark.parametrize("E, nu, name", [(0.0, 0.3, "E"), (1e9, 0.5, "nu"), (1e9, -1.0, "nu")])
+def test_bad_material_names_the_parameter(E, nu, name):
+    with pytest.raises(ValueError, match=f"^{name} must"):
+        fve.lame(E, nu)
+
+
+# --- mesh ------------------------------------------------------------------------------
 
 
 def test_two_bodies_with_matching_contact_faces(coarse):
@@ -51,6 +115,75 @@ def test_two_bodies_with_matching_contact_faces(coarse):
     assert mesh.extent >= 10 * scene.hertz().a
 
 
+def test_meshing_is_deterministic(coarse):
+    scene, mesh, _, _ = coarse
+    again = fvm.build(scene, 0)
+    for first, second in zip(mesh.bodies, again.bodies, strict=True):
+        np.testing.assert_array_equal(first.p, second.p)
+        np.testing.assert_array_equal(first.t, second.t)
+
+
+def test_levels_scale_every_size():
+    scene = fv.equal_steel(3)
+    fine, coarse = fvm.mesh_parameters(scene, 4), fvm.mesh_parameters(scene, 3)
+    for key in ("hs", "h0", "grade", "hmax"):
+        assert coarse[key] == pytest.approx(fvm.LEVEL_RATIO * fine[key], rel=1e-12), key
+    for key in ("L", "H", "zone", "zi", "zz", "st", "ea"):
+        assert coarse[key] == fine[key], key
+    with pytest.raises(ValueError, match="^level must be one of"):
+        fvm.mesh_parameters(scene, 9)
+
+
+def test_anisotropy_grows_with_the_ellipticity_up_to_a_cap():
+    assert fvm.anisotropy(1.0) == 1.0
+    assert fvm.anisotropy(8.0) == pytest.approx(8.0 / fvm.ANISOTROPY_PER_A)
+    assert fvm.anisotropy(100.0) == fvm.MAX_ANISOTROPY
+    with pytest.raises(ValueError, match="^ellipticity must"):
+        fvm.anisotropy(0.5)
+
+
+def test_the_contact_zone_is_a_structured_grid(coarse):
+    """Near the origin every contact node sits on the grid of spacing hs (st hs along a)."""
+    scene, mesh, _, _ = coarse
+    params = mesh.parameters
+    b = scene.hertz().b
+    xy = mesh.bodies[0].p[:2, mesh.pairs[:, 0]].T / b
+    inner = np.all(xy < 0.5, axis=1)
+    # alpha = 3: the major axis is along y
+    steps = {0: params["hs"], 1: params["hs"] * params["st"]}
+    for k, h in steps.items():
+        n = params["zone"] * (params["eb"] if k == 0 else params["ea"]) / h
+        spacing = params["zone"] * (params["eb"] if k == 0 else params["ea"]) / math.ceil(n)
+        q = xy[inner, k] / spacing
+        np.testing.assert_allclose(q, np.round(q), atol=1e-6)
+
+
+def test_axis_nodes_lie_on_the_z_axis(coarse, crossed_coarse):
+    for _, mesh in (coarse[:2], crossed_coarse):
+        for body, nodes in zip(mesh.bodies, mesh.axis, strict=True):
+            p = body.p[:, nodes]
+            assert len(nodes) >= 5
+            np.testing.assert_allclose(p[:2], 0.0, atol=1e-9 * mesh.extent)
+            depth = np.abs(p[2])
+            assert depth[0] == 0 and np.all(np.diff(depth) > 0)
+            assert depth[-1] == pytest.approx(mesh.depth)
+
+
+def test_geometry_is_found_packaged_first_then_in_the_checkout(tmp_path, monkeypatch):
+    source = fvm.geometry_file()
+    assert Path(source).name == "blocks.geo" and Path(source).is_file()
+    packaged = tmp_path / "fem_validation"
+    (packaged / "meshes").mkdir(parents=True)
+    (packaged / "meshes" / "blocks.geo").write_text("// packaged copy\n")
+    monkeypatch.setattr(fvm.importlib.resources, "files", lambda package: packaged)
+    assert Path(fvm.geometry_file()) == packaged / "meshes" / "blocks.geo"
+    with pytest.raises(fv.FEMValidationError, match="not found"):
+        fvm.geometry_file("no-such.geo")
+
+
+# --- solver and comparison -------------------------------------------------------------
+
+
 def test_gap_is_the_relative_curvature_quadratic():
     scene = fv.crossed_30deg()
     c = scene.hertz()
@@ -59,6 +192,33 @@ def test_gap_is_the_relative_curvature_quadratic():
     along_minor = np.array([[-math.sin(t), math.cos(t)]]) * 1e-4
     assert fvs.gap0(scene, along_major)[0] == pytest.approx(0.5 * c.rho_y * 1e-8, rel=1e-12)
     assert fvs.gap0(scene, along_minor)[0] == pytest.approx(0.5 * c.rho_x * 1e-8, rel=1e-12)
+
+
+def test_initial_active_sets(coarse):
+    scene, mesh, sol, _ = coarse
+    xy = mesh.bodies[0].p[:2, mesh.pairs[:, 0]].T
+    hertz_set = fvs.initial_active_set(scene, xy, sol.approach, "hertz")
+    overlap = fvs.initial_active_set(scene, xy, sol.approach, "interpenetration")
+    assert np.all(overlap[hertz_set]) and overlap.sum() > 1.5 * hertz_set.sum()
+    assert not fvs.initial_active_set(scene, xy, sol.approach, "none").any()
+    assert fvs.initial_active_set(scene, xy, sol.approach, "all").all()
+    with pytest.raises(ValueError, match="^initial_active must be one of"):
+        fvs.initial_active_set(scene, xy, sol.approach, "ellipse")
+    with pytest.raises(ValueError, match="^kappa must"):
+        fvs.solve_contact(scene, mesh, kappa=-1.0)
+    with pytest.raises(ValueError, match="^depth must"):
+        fvs.boussinesq_settlement(1.0, 1e9, 0.3, 0.0)
+
+
+def test_a_cold_start_reaches_the_same_solution(coarse):
+    """Started from the interpenetration of the undeformed bodies, the active set settles
+    where Hertz's start leads, the preconditioner being rebuilt on the way."""
+    scene, mesh, sol, _ = coarse
+    cold = fvs.solve_contact(scene, mesh, initial_active="interpenetration")
+    np.testing.assert_array_equal(cold.active, sol.active)
+    np.testing.assert_allclose(cold.pressure, sol.pressure, rtol=0,
+                               atol=1e-4 * sol.pressure.max())
+    assert cold.amg_setups > 1 and cold.active_set_iterations > sol.active_set_iterations
 
 
 def test_post_processing_recovers_an_exact_hertz_field():
@@ -76,6 +236,33 @@ def test_post_processing_recovers_an_exact_hertz_field():
     assert mom["major_axis_angle_deg"] == pytest.approx(-75, abs=0.5)
 
 
+def test_edge_of_the_active_set_on_a_grid():
+    """The ellipse through the midpoints of the active-inactive edges of a fine grid."""
+    a, b, theta = 2.0, 1.0, math.radians(30)
+    g = np.linspace(-3, 3, 241)
+    x, y = np.meshgrid(g, g, indexing="ij")
+    xy = np.column_stack([x.ravel(), y.ravel()])
+    n = len(g)
+    idx = np.arange(n * n).reshape(n, n)
+    tri = np.concatenate([np.column_stack([idx[:-1, :-1].ravel(), idx[1:, :-1].ravel(),
+                                           idx[1:, 1:].ravel()]),
+                          np.column_stack([idx[:-1, :-1].ravel(), idx[1:, 1:].ravel(),
+                                           idx[:-1, 1:].ravel()])])
+    c, s = math.cos(theta), math.sin(theta)
+    u, v = xy @ np.array([c, s]), xy @ np.array([-s, c])
+    active = (u / a) ** 2 + (v / b) ** 2 < 1
+    edge = fvc.edge_ellipse(fvc.active_edge_points(xy, tri, active), quarter=False)
+    assert (edge["a"], edge["b"]) == pytest.approx((a, b), rel=2e-3)
+    assert edge["major_axis_angle_deg"] == pytest.approx(30, abs=0.5)
+    quarter = np.all(xy >= 0, axis=1)
+    keep = np.all(quarter[tri], axis=1)
+    aligned = (xy[:, 0] / a) ** 2 + (xy[:, 1] / b) ** 2 < 1
+    q = fvc.edge_ellipse(fvc.active_edge_points(xy, tri[keep], aligned), quarter=True)
+    assert (q["a"], q["b"]) == pytest.approx((a, b), rel=3e-3)
+    with pytest.raises(ValueError, match="^points must"):
+        fvc.edge_ellipse(np.zeros((2, 2)), quarter=True)
+
+
 def test_interpolation_on_the_face_is_exact_for_linear_fields():
     xy = np.array([[0.0, 0.0], [1.0, 0.0], [0.0, 1.0], [1.0, 1.0]])
     tri = np.array([[0, 1, 2], [1, 3, 2]])
@@ -89,18 +276,43 @@ def test_interpolation_on_the_face_is_exact_for_linear_fields():
 def test_coarse_end_to_end_is_roughly_hertz(coarse):
     """Loose tolerances that still catch a wrong sign or a factor of 2 (E' for E*: 26% in a)."""
     scene, mesh, sol, r = coarse
-    assert abs(r.a_rel_err) < 0.06 and abs(r.b_rel_err) < 0.06
-    assert abs(r.p0_rel_err) < 0.10
-    assert r.rms_major < 0.10 and r.rms_minor < 0.10
-    assert abs(r.force_rel_err) < 1e-5
+    assert abs(r.a_rel_err) < 0.03 and abs(r.b_rel_err) < 0.03
+    assert abs(r.p0_rel_err) < 0.06
+    assert r.rms_major < 0.06 and r.rms_minor < 0.06
+    assert abs(r.edge_a_rel_err) < 0.05 and abs(r.edge_b_rel_err) < 0.05
+    assert abs(r.approach_rel_err) < 0.1
     assert 0.8 < sol.force / scene.load < 1.2
     assert r.max_penetration_over_delta < 0.01
     assert sol.active.sum() > 10 and not sol.active.all()
+    # the reaction equals the contact force by construction (up to the CG residual)
+    assert abs(r.force_rel_err) < 1e-6
+    assert math.isnan(r.angle_err_deg)  # a quarter model has its axes by construction
+
+
+def test_axis_stress_is_in_the_ellipse_frame(coarse):
+    scene, mesh, sol, r = coarse
+    c = scene.hertz(sol.force)
+    for name in ("body1", "body2"):
+        data = r.axis_stress[name]
+        depth, stress = data["depth"], data["stress"]
+        assert stress.shape == (len(depth), 3, 3) and depth[0] == 0
+        np.testing.assert_allclose(stress, stress.transpose(0, 2, 1), atol=1e-9 * c.p0)
+        # compressive below the contact: sigma_zz = -p0 a b / sqrt((a^2 + z^2)(b^2 + z^2))
+        z = depth[(depth > 0.5 * c.b) & (depth < 3 * c.a)]
+        exact = -c.p0 * c.a * c.b / np.sqrt((c.a**2 + z**2) * (c.b**2 + z**2))
+        fem = stress[(depth > 0.5 * c.b) & (depth < 3 * c.a), 2, 2]
+        assert np.abs(fem - exact).max() < 0.1 * c.p0
+
+
+def test_check_names_the_missed_targets(coarse):
+    *_, r = coarse
+    missed = fv.check(r, {"a_rel_err": 1e-6, "rms_major": 1.0})
+    assert len(missed) == 1 and "a_rel_err" in missed[0]
 
 
 def test_vtu_round_trip_and_reports(coarse, tmp_path):
     scene, mesh, sol, r = coarse
-    paths = fvc.write_vtu(scene, mesh, sol, tmp_path)
+    paths = fvo.write_vtu(scene, mesh, sol, tmp_path)
     for i, path in enumerate(paths):
         back = meshio.read(path)
         body = mesh.bodies[i]
@@ -113,12 +325,28 @@ def test_vtu_round_trip_and_reports(coarse, tmp_path):
         assert np.all(back.point_data["von_mises"] >= 0)
         p = back.point_data["contact_pressure_fem"][mesh.pairs[:, i]]
         np.testing.assert_array_equal(p, sol.pressure)
-    json_path, md_path = fvc.write_reports([r], tmp_path)
-    row = json.loads(json_path.read_text())[0]
+    json_path, md_path = fvo.write_reports([r], tmp_path)
+    row = json.loads(json_path.read_text())[0]  # strict JSON: NaN is written as null
     for key in ("alpha", "a_rel_err", "b_rel_err", "p0_rel_err", "force_rel_err", "seconds",
-                "dofs"):
+                "dofs", "edge_a_rel_err", "approach_rel_err", "peak_memory_mb"):
         assert key in row
+    assert row["angle_err_deg"] is None and "axis_stress" not in row
     assert "alpha-3" in md_path.read_text()
+
+
+def test_richardson_and_rates_on_a_known_sequence():
+    h = np.array([0.4, 0.4 / 2**0.5, 0.2])
+    e = 0.001 + 0.05 * h**2
+    e0, p = fvst.richardson(*e, 2**0.5)
+    assert e0 == pytest.approx(0.001, abs=1e-12) and p == pytest.approx(2.0)
+    rates = fvst.observed_rates(h, {"q": 0.05 * h**1.5})
+    assert rates["q"] == pytest.approx(1.5)
+    assert all(math.isnan(v) for v in fvst.richardson(1.0, 0.5, 0.7, 2**0.5))
+    assert fvst.richardson_with_order(e[1], e[2], 2**0.5, 2.0) == pytest.approx(0.001)
+    with pytest.raises(ValueError, match="^ratio must"):
+        fvst.richardson(1.0, 0.5, 0.2, 1.0)
+    with pytest.raises(ValueError, match="^order must"):
+        fvst.richardson_with_order(1.0, 0.5, 2.0, 0.0)
 
 
 def test_cli(tmp_path):
@@ -128,9 +356,11 @@ def test_cli(tmp_path):
     assert ok.returncode == 0, ok.stderr
     assert (tmp_path / "report.json").exists() and (tmp_path / "alpha-1.5_body2.vtu").exists()
     assert (tmp_path / "alpha-1.5_pressure.png").exists()
-    bad = subprocess.run([sys.executable, "-m", "fem_validation", "--scene", "nope"],
-                         capture_output=True, text=True)
-    assert bad.returncode == 2 and bad.stderr.count("\n") == 1 and "Traceback" not in bad.stderr
+    for bad in (["--scene", "nope"], ["--study", "alpha-3", "--levels", "0", "2", "3"]):
+        out = subprocess.run([sys.executable, "-m", "fem_validation", *bad,
+                              "--out", str(tmp_path)], capture_output=True, text=True)
+        assert out.returncode == 2 and out.stderr.count("\n") == 1, out.stderr
+        assert "Traceback" not in out.stderr
 
 
 def test_scene_loads_keep_the_contact_small():
@@ -146,34 +376,117 @@ def test_scene_loads_keep_the_contact_small():
     assert isinstance(fv.equal_steel(2).body1, hertz.Body)
 
 
-TARGETS = {"a_rel_err": 0.02, "b_rel_err": 0.02, "p0_rel_err": 0.03, "rms_major": 0.03,
-           "rms_minor": 0.03, "force_rel_err": 0.005}
+# --- slow: the default level against Hertz ---------------------------------------------
+
+#: Errors observed at the default level (python -m fem_validation --alpha 1 3 10 30 100;
+#: alpha = 6 was not run before these tests were written).
+OBSERVED = {
+    1: {"a_rel_err": -0.00141, "b_rel_err": -0.00224, "p0_rel_err": 0.00273,
+        "rms_major": 0.01321, "rms_minor": 0.01189, "edge_a_rel_err": 0.00441,
+        "edge_b_rel_err": -0.00025, "approach_rel_err": -0.00080},
+    10: {"a_rel_err": -0.00203, "b_rel_err": -0.00112, "p0_rel_err": 0.00255,
+         "rms_major": 0.00672, "rms_minor": 0.01130, "edge_a_rel_err": -0.00150,
+         "edge_b_rel_err": 0.00727, "approach_rel_err": -0.00284},
+}
+FLOOR = 0.0005
+
+
+def _tolerances(observed):
+    return {k: max(1.5 * abs(v), FLOOR) for k, v in observed.items()}
+
+
+@pytest.fixture(scope="module")
+def default_level_alpha_1():
+    scene = fv.equal_steel(1)
+    mesh = fvm.build(scene)
+    sol = fvs.solve_contact(scene, mesh)
+    return scene, mesh, sol, fvc.compare_with_hertz(scene, mesh, sol, fvm.DEFAULT_LEVEL, 0.0)
 
 
 @pytest.mark.slow
-@pytest.mark.parametrize("alpha", [1, 3, 10])
-def test_targets_at_the_default_mesh(alpha):
+def test_alpha_1_at_the_default_level(default_level_alpha_1):
+    *_, r = default_level_alpha_1
+    assert fv.check(r) == []
+    assert fv.check(r, _tolerances(OBSERVED[1])) == []
+    assert r.max_penetration_over_delta <= 1e-3
+
+
+@pytest.mark.slow
+def test_a_wrong_reference_fails(default_level_alpha_1):
+    """Mutation: Hertz's a made 1.5% too large must fail both the issue's targets and the
+    tests' tolerances; the true reference passes (test above)."""
+    scene, mesh, sol, _ = default_level_alpha_1
+
+    class Wrong:
+        def __init__(self, contact, scale):
+            self._c, self.a = contact, contact.a * scale
+
+        def __getattr__(self, name):
+            return getattr(self._c, name)
+
+        def pressure(self, x, y):
+            r2 = (np.asarray(x) / self.a) ** 2 + (np.asarray(y) / self._c.b) ** 2
+            return self._c.p0 * np.sqrt(np.clip(1 - r2, 0, None))
+
+    for scale in (1.01, 1.015, 0.985):
+        wrong = fvc.compare_with_hertz(scene, mesh, sol, fvm.DEFAULT_LEVEL, 0.0,
+                                       hertz_at=lambda load, s=scale: Wrong(scene.hertz(load),
+                                                                            s))
+        assert any("a_rel_err" in m for m in fv.check(wrong, _tolerances(OBSERVED[1])))
+        if abs(scale - 1) > 0.01:
+            assert any("a_rel_err" in m for m in fv.check(wrong))
+
+
+@pytest.mark.slow
+def test_axis_stress_at_the_default_level(default_level_alpha_1):
+    """sigma_zz on the axis against Hertz's closed form (REFERENCES.md), 0.2 a to 3 a deep.
+
+    Observed: at most 0.9% of p0 in body 1 and 1.8% in body 2 (both largest inside the
+    structured block, of opposite signs: the nodal average at the quarter model's corner
+    sees the grid's diagonals differently in the two bodies)."""
+    scene, mesh, sol, r = default_level_alpha_1
+    c = scene.hertz(sol.force)
+    for name in ("body1", "body2"):
+        depth, stress = r.axis_stress[name]["depth"], r.axis_stress[name]["stress"]
+        sel = (depth > 0.2 * c.a) & (depth < 3 * c.a)
+        exact = -c.p0 * c.a * c.b / np.sqrt((c.a**2 + depth[sel] ** 2)
+                                            * (c.b**2 + depth[sel] ** 2))
+        assert np.abs(stress[sel, 2, 2] - exact).max() < 0.028 * c.p0
+
+
+@pytest.mark.slow
+@pytest.mark.parametrize("alpha", [10])
+def test_targets_at_the_default_level(alpha):
     r = fv.validate(fv.equal_steel(alpha))
-    for key, limit in TARGETS.items():
-        assert abs(getattr(r, key)) <= limit, (key, getattr(r, key))
-    assert r.max_penetration_over_delta <= 0.01
+    assert fv.check(r) == []
+    assert fv.check(r, _tolerances(OBSERVED[alpha])) == []
+
+
+@pytest.mark.slow
+def test_an_alpha_not_tuned_on():
+    r = fv.validate(fv.equal_steel(6))
+    assert fv.check(r) == []
+    assert abs(r.approach_rel_err) < 0.005
+    assert abs(r.edge_a_rel_err) < 0.01 and abs(r.edge_b_rel_err) < 0.01
 
 
 @pytest.mark.slow
 def test_orientation_of_the_crossed_scene():
-    r = fv.validate(fv.crossed_30deg(), level=2)
-    assert abs(r.angle_err_deg) < 1.0
-    assert abs(r.a_rel_err) < 0.02 and abs(r.b_rel_err) < 0.02
+    r = fv.validate(fv.crossed_30deg(), level=3)  # observed: a -0.41%, b -0.27%
+    assert abs(r.angle_err_deg) < 0.3
+    assert abs(r.a_rel_err) < 0.0065 and abs(r.b_rel_err) < 0.0045
 
 
 @pytest.mark.slow
-def test_refinement_rates(tmp_path):
+def test_refinement_study_converges(tmp_path):
     from fem_validation.study import refinement_study
 
-    study = refinement_study(fv.equal_steel(3), [0, 1, 2, 3], tmp_path)
-    errors = {q: [abs(r[q]) for r in study["results"]] for q in study["rates"]}
-    for q, values in errors.items():
-        assert values[-1] < values[0] / 2, (q, values)
-    rates = study["rates"]
-    assert rates["a_rel_err"] > 0.3 and rates["b_rel_err"] > 0.8
-    assert rates["p0_rel_err"] > 0.5 and min(rates["rms_major"], rates["rms_minor"]) > 0.4
+    study = refinement_study(fv.equal_steel(3), [2, 3, 4], tmp_path)
+    assert json.loads((tmp_path / "study.json").read_text())["rates"] == study["rates"]
+    rows = study["levels"]
+    for q in ("a_rel_err", "b_rel_err", "p0_rel_err", "rms_major", "rms_minor"):
+        errors = [abs(row[q]) for row in rows]
+        assert errors[0] > errors[1] > errors[2], (q, errors)
+    for q, value in study["extrapolated"].items():
+        assert abs(value) < 0.002, (q, value)
+    assert all(rate > 0.8 for rate in study["rates"].values()), study["rates"]
