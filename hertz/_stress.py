@@ -61,7 +61,12 @@ class LineSubsurface:
     Attributes
     ----------
     tau_max, z_tau_max : float or ndarray
-        The largest principal shear stress [Pa] (on the z axis) and its depth [m].
+        The largest principal shear stress (s1 - s3)/2 [Pa] (on the z axis) and its
+        depth [m], over all three principal stresses, the out-of-plane
+        s_yy = nu (s_xx + s_zz) included.  For nu >= 0.2423 it is the in-plane
+        maximum of the textbooks (0.300 p0 at 0.786 b); below that the largest
+        shear is (s_yy - s_zz)/2 and lies shallower: 0.408 p0 at 0.173 b for
+        nu = 0.1, 0.5 p0 at the surface for nu = 0.  Long point contacts agree.
     von_mises, z_von_mises : float or ndarray
         The largest von Mises stress [Pa] (plane strain, on the z axis) and its depth [m].
     tau_orthogonal, x_tau_orthogonal, z_tau_orthogonal : float or ndarray

@@ -52,6 +52,30 @@ def test_line_contact_published_values():
     assert m.x_tau_orthogonal / lc.half_width == pytest.approx(math.sqrt(3) / 2, rel=1e-12)
 
 
+
+@pytest.mark.parametrize("nu", [0.0, 0.1, 0.2, 0.3, 0.45])
+def test_line_contact_shear_counts_the_out_of_plane_stress(nu):
+    """(s1 - s3)/2 over all three principal stresses: McEwen's axis stresses
+    s_xx = -p0 ((1 + 2 t^2)/sqrt(1 + t^2) - 2 t), s_zz = -p0/sqrt(1 + t^2) (t = z/b),
+    s_yy = nu (s_xx + s_zz) in plane strain, maximised with mpmath."""
+    lc = hertz.line_contact(hertz.Body.cylinder(0.01, 210e9, nu), hertz.Body.plane(210e9, nu),
+                            1e5)
+    m = lc.subsurface()
+    with mp.workdps(30):
+        def tau(t):
+            r = mp.sqrt(1 + t * t)
+            sxx, szz = -((1 + 2 * t * t) / r - 2 * t), -1 / r
+            syy = nu * (sxx + szz)
+            return (max(sxx, syy, szz) - min(sxx, syy, szz)) / 2
+        ts = [mp.mpf(k) / 400 for k in range(0, 801)]
+        t0 = max(ts, key=tau)
+        if t0 > 0:  # refine the interior maximum
+            t0 = mp.findroot(lambda t: mp.diff(tau, t), t0)
+        ref_tau, ref_z = tau(t0), t0
+    assert m.tau_max / lc.p0 == pytest.approx(float(ref_tau), rel=1e-12)
+    assert m.z_tau_max / lc.half_width == pytest.approx(float(ref_z), rel=1e-8, abs=1e-300)
+
+
 # ------------------------------------------------- closed forms on the z axis
 
 def axis_reference(a, b, nu, z):
