@@ -116,7 +116,7 @@ def validate(scene: Scene, level: int = DEFAULT_LEVEL, out: str | Path | None = 
     if out is not None:
         out = Path(out)
         out.mkdir(parents=True, exist_ok=True)
-        write_vtu(scene, mesh, sol, out)
+        write_vtu(scene, mesh, sol, out, nodal_stress=result.nodal_stress)
         plot_profiles(scene, prof, result, out / f"{scene.name}_pressure.png")
     return result
 

@@ -8,22 +8,61 @@ from pathlib import Path
 
 import numpy as np
 
-from .compare import Comparison
-from .elasticity import element_stress, nodal_average, von_mises
+from .compare import Comparison, ellipse_rotation, recovered_stress
+from .elasticity import von_mises
 from .mesh import BlockMesh
 from .scenes import Scene
 from .solve import ContactSolution
 
 
-def write_vtu(scene: Scene, mesh: BlockMesh, sol: ContactSolution, out: Path) -> list[Path]:
-    """One .vtu per body: displacement, von Mises stress, FEM and Hertz contact pressure."""
+def hertz_nodal_stress(c, p: np.ndarray, body: int) -> np.ndarray:
+    """Hertz's stress at nodes p (3, n) of body 1 or 2, in the mesh frame, (n, 3, 3) [Pa].
+
+    The nodes are put into the ellipse frame of ``c`` (a ``hertz.Contact``; z is
+    the depth into the body: the mesh's z for body 1, -z for body 2),
+    ``c.stress`` is evaluated there at once, and the tensors are turned back
+    into the mesh frame.
+    """
+    rot = ellipse_rotation(c.major_axis_angle, body)
+    x, y, z = rot @ p
+    exact = c.stress(x, y, np.maximum(z, 0.0), body=body)
+    return np.einsum("ji,njk,kl->nil", rot, exact, rot)
+
+
+def _tensor(s: np.ndarray) -> np.ndarray:
+    """(n, 3, 3) -> (n, 9), rows xx xy xz yx yy yz zx zy zz (ParaView's tensor layout)."""
+    return np.ascontiguousarray(s.reshape(len(s), 9))
+
+
+def write_vtu(scene: Scene, mesh: BlockMesh, sol: ContactSolution, out: Path,
+              nodal_stress: tuple | None = None, reference=None) -> list[Path]:
+    """One .vtu per body, for ParaView.
+
+    Point data: ``displacement`` [m]; ``stress_fem`` (the patch-recovered FEM
+    stress, :func:`fem_validation.compare.recovered_stress`), ``stress_hertz``
+    (``Contact.stress`` at the node) and ``stress_difference`` (FEM - Hertz),
+    9-component tensors in the mesh frame [Pa]; ``von_mises`` (of
+    ``stress_fem``), ``von_mises_hertz`` and ``von_mises_difference`` [Pa];
+    ``contact_pressure_fem``, ``contact_pressure_hertz`` and
+    ``contact_pressure_difference`` [Pa] (zero off the contact face).
+
+    Parameters
+    ----------
+    scene, mesh, sol : the run
+    out : Path
+        Directory; writes ``<scene>_body1.vtu`` and ``<scene>_body2.vtu``.
+    nodal_stress : tuple of two ndarrays, optional
+        The bodies' recovered stresses (``Comparison.nodal_stress``), computed
+        here if not given.
+    reference : hertz.Contact, optional
+        The Hertz contact to write (default: the scene's at the force reached).
+    """
     import meshio
 
-    c = scene.hertz(sol.force)
+    c = scene.hertz(sol.force) if reference is None else reference
     theta = c.major_axis_angle
     paths = []
-    for i, (m, u, body) in enumerate(zip(mesh.bodies, (sol.u1, sol.u2),
-                                         (scene.body1, scene.body2), strict=True)):
+    for i, (m, u) in enumerate(zip(mesh.bodies, (sol.u1, sol.u2), strict=True)):
         nodes = mesh.pairs[:, i]
         p_fem = np.zeros(m.nvertices)
         p_fem[nodes] = sol.pressure
@@ -31,10 +70,16 @@ def write_vtu(scene: Scene, mesh: BlockMesh, sol: ContactSolution, out: Path) ->
         p_hertz = np.zeros(m.nvertices)
         p_hertz[nodes] = c.pressure(x * math.cos(theta) + y * math.sin(theta),
                                     -x * math.sin(theta) + y * math.cos(theta))
-        vm = von_mises(nodal_average(m.p, m.t, element_stress(m.p, m.t, u, body.E, body.nu)))
+        fem = (recovered_stress(scene, mesh, sol, i + 1) if not nodal_stress
+               else nodal_stress[i])
+        exact = hertz_nodal_stress(c, m.p, i + 1)
+        vm, vm_hertz = von_mises(fem), von_mises(exact)
         data = {"displacement": u, "von_mises": vm,
                 "contact_pressure_fem": p_fem, "contact_pressure_hertz": p_hertz,
-                "contact_pressure_difference": p_fem - p_hertz}
+                "contact_pressure_difference": p_fem - p_hertz,
+                "stress_fem": _tensor(fem), "stress_hertz": _tensor(exact),
+                "stress_difference": _tensor(fem - exact), "von_mises_hertz": vm_hertz,
+                "von_mises_difference": vm - vm_hertz}
         path = out / f"{scene.name}_body{i + 1}.vtu"
         meshio.write(path, meshio.Mesh(m.p.T, [("tetra", m.t.T)], point_data=data))
         paths.append(path)
@@ -73,13 +118,19 @@ COLUMNS = [("scene", "{}"), ("level", "{}"), ("alpha", "{:.3g}"), ("load", "{:.4
            ("peak_nodal_rel_err", "{:+.2%}"), ("rms_major", "{:.2%}"), ("rms_minor", "{:.2%}"),
            ("edge_a_rel_err", "{:+.2%}"), ("edge_b_rel_err", "{:+.2%}"),
            ("approach_rel_err", "{:+.2%}"), ("angle_err_deg", "{:+.2f}"),
-           ("max_penetration_over_delta", "{:.1e}"), ("dofs", "{}"), ("seconds", "{:.0f}"),
+           ("max_penetration_over_delta", "{:.1e}"), ("von_mises_rel_err", "{:+.2%}"),
+           ("z_von_mises_rel_err", "{:+.2%}"), ("stress_rms_axis", "{:.2%}"),
+           ("stress_rms_major_plane", "{:.2%}"), ("stress_rms_minor_plane", "{:.2%}"),
+           ("dofs", "{}"), ("seconds", "{:.0f}"),
            ("peak_memory_mb", "{:.0f}")]
 HEADERS = {"load": "P [N]", "a_rel_err": "a", "b_rel_err": "b", "p0_rel_err": "p0 (fit)",
            "peak_nodal_rel_err": "peak node", "rms_major": "RMS major", "rms_minor": "RMS minor",
            "edge_a_rel_err": "edge a", "edge_b_rel_err": "edge b",
            "approach_rel_err": "approach", "angle_err_deg": "axis angle [deg]",
-           "max_penetration_over_delta": "penetration/delta", "seconds": "s",
+           "max_penetration_over_delta": "penetration/delta", "von_mises_rel_err": "VM max",
+           "z_von_mises_rel_err": "VM depth", "stress_rms_axis": "stress RMS axis",
+           "stress_rms_major_plane": "RMS major plane",
+           "stress_rms_minor_plane": "RMS minor plane", "seconds": "s",
            "peak_memory_mb": "MB"}
 
 

@@ -33,10 +33,10 @@ DefineConstant[
   etheta = {0, Name "Parameters/etheta",
             Help "angle of its major axis from x [rad] (0 or pi/2 for a quarter model)"},
   zone = {1.25, Name "Parameters/zone", Help "structured block: semi-axes times this"},
-  zi = {0.7, Name "Parameters/zi", Help "depth of the structured block"},
+  zi = {1.0, Name "Parameters/zi", Help "depth of the structured block"},
   hs = {0.1, Name "Parameters/hs", Help "its spacing across the major axis and in depth"},
   st = {1, Name "Parameters/st", Help "its spacing along the major axis over hs"},
-  zz = {1.0, Name "Parameters/zz", Help "depth of the zone of size h0"},
+  zz = {1.3, Name "Parameters/zz", Help "depth of the zone of size h0"},
   h0 = {0.14, Name "Parameters/h0", Help "element size around the structured block"},
   grade = {0.2, Name "Parameters/grade", Help "growth of the size away from the zone"},
   hmax = {8, Name "Parameters/hmax", Help "largest element size"}
