@@ -1,6 +1,7 @@
 """Stresses below the default scene, and the speed of the stress field and its maxima.
 
     python benchmarks/stress.py [--n 1000000] [--contacts 100000] [--repeats 7] [--no-readme]
+                                [--baseline PATH]
 
 Writes the table of subsurface maxima of the ``hertz`` command's default
 scene (a bearing ball on its inner race) and docs/stress.png (the figure of
@@ -8,12 +9,16 @@ scene (a bearing ball on its inner race) and docs/stress.png (the figure of
 Contact.subsurface for N contacts against one scipy.special.ellipk + ellipe
 pass over N (CPU time, interleaved rounds, medians of the per-round
 ratios).  The tables replace the stress section of README.md unless
---no-readme.
+--no-readme.  --baseline PATH (another build's hertz/_ufuncs*.so, or the
+checkout that holds it) adds, in the same interleaved rounds, the bare
+subsurface ufunc of that build and of this one on the same contacts, for a
+before/after comparison on a busy machine.
 """
 
 from __future__ import annotations
 
 import argparse
+import importlib.util
 import os
 import sys
 import time
@@ -59,7 +64,23 @@ def maxima_table(c) -> list[str]:
     return lines
 
 
-def speed(n: int, contacts: int, repeats: int) -> list[str]:
+def load_baseline(path: str):
+    """hertz._ufuncs of another build: the .so itself or a checkout with hertz/_ufuncs*.so."""
+    p = Path(path)
+    if p.is_dir():
+        found = sorted(p.glob("hertz/_ufuncs*.so")) + sorted(p.glob("hertz/_ufuncs*.pyd"))
+        if not found:
+            raise SystemExit(f"no hertz/_ufuncs*.so in {p} (build it with setup.py build_ext "
+                             "--inplace)")
+        p = found[0]
+    # a name that ends in _ufuncs: the loader calls PyInit__ufuncs
+    spec = importlib.util.spec_from_file_location("hertz_baseline._ufuncs", p)
+    module = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(module)
+    return module
+
+
+def speed(n: int, contacts: int, repeats: int, baseline=None) -> list[str]:
     rng = np.random.default_rng(0)
     c = default_contact()
     x = rng.uniform(-2 * c.a, 2 * c.a, n)
@@ -77,6 +98,14 @@ def speed(n: int, contacts: int, repeats: int) -> list[str]:
         "contacts": {"ref": lambda: (special.ellipk(mc), special.ellipe(mc)),
                      "Contact.subsurface": lambda: batch.subsurface(1)},
     }
+    if baseline is not None:
+        from hertz import _ufuncs
+
+        a, b, nu = np.asarray(batch.a), np.asarray(batch.b), 0.3
+        contenders["contacts"]["subsurface ufunc, this build"] = lambda: _ufuncs.subsurface(
+            a, b, nu)
+        contenders["contacts"]["subsurface ufunc, baseline"] = lambda: baseline.subsurface(
+            a, b, nu)
     lines = ["| case | ns per element (median) | time / (ellipk + ellipe) over the same N, "
              f"median of {repeats} rounds |", "|---|---|---|"]
     for group, size in (("points", n), ("contacts", contacts)):
@@ -104,7 +133,13 @@ def main():
     ap.add_argument("--contacts", type=int, default=100_000)
     ap.add_argument("--repeats", type=int, default=7)
     ap.add_argument("--no-readme", action="store_true", help="do not update README.md")
+    ap.add_argument("--baseline", metavar="PATH",
+                    help="also time the subsurface ufunc of another build (its _ufuncs .so "
+                         "or its checkout), interleaved with this one's")
     args = ap.parse_args()
+    if args.baseline and not args.no_readme:
+        ap.error("--baseline is for comparisons: add --no-readme")
+    baseline = load_baseline(args.baseline) if args.baseline else None
     c = default_contact()
     from hertz._plot import stress_figure
 
@@ -112,7 +147,7 @@ def main():
     stress_figure(c, title="bearing ball on inner race (default scene)").savefig(
         DOCS / "stress.png", dpi=110)
     lines = [f"{describe()}, {time.strftime('%Y-%m-%d')}; `python benchmarks/stress.py`", "",
-             *maxima_table(c), "", *speed(args.n, args.contacts, args.repeats)]
+             *maxima_table(c), "", *speed(args.n, args.contacts, args.repeats, baseline)]
     text = "\n".join(lines)
     print(text)
     if not args.no_readme:

@@ -57,9 +57,10 @@
  * m - z = Re b^2 / (m + z + i (n + x)), free of cancellation at depth.
  *
  * Maxima on the axis: the axis stresses are principal; their z-derivatives are elementary
- * once the two R_D are known. The maxima are found from a table of the targets and their
- * first two derivatives at a few depths (quintic Hermite interpolation), then by Newton's
- * method on the derivative. Orthogonal shear: Lundberg & Palmgren (1947), closed form in
+ * once the two R_D are known. For 0.25 <= nu <= 0.5 and b/a >= 1e-3 the maxima start
+ * from fitted depths (one exact evaluation and a Halley step, axis_maxima_direct);
+ * elsewhere they are found from a table of the targets and their first two derivatives at
+ * a few depths (quintic Hermite interpolation), then by Halley's method on the derivative. Orthogonal shear: Lundberg & Palmgren (1947), closed form in
  * the root t of (b/a)^2 = (t^2 - 1)(2t - 1); the position y = b t/(t+1) sqrt((2t+1)/(2t-1))
  * was derived here (maximum of |syz| over the plane x = 0).
  *
@@ -121,11 +122,17 @@ static void rd_pair(double x, double y, double z, double *rd_xyz, double *rd_xzy
 
 #define RD_BATCH 16
 
+/* The duplication stops once every deviation from the mean is below tol times the mean:
+   RD_EXACT (1e-2) leaves a series error of about 4e-18; RD_ROUGH (0.1, two duplications
+   fewer) one below 1e-9, enough for the table that only locates the maxima. */
+#define RD_EXACT 1e-2
+#define RD_ROUGH 1e-1
+
 /* rd_pair for n <= RD_BATCH triples at once, in lockstep: the duplication steps of
    different triples are independent, so their square roots overlap in the processor
    (and may be vectorised) instead of waiting for each other. */
 static void rd_pair_batch(int n, const double *x0, const double *y0, const double *z0,
-                          double *rd_xyz, double *rd_xzy)
+                          double *rd_xyz, double *rd_xzy, double tol)
 {
     double x[RD_BATCH], y[RD_BATCH], z[RD_BATCH], sum_z[RD_BATCH], sum_y[RD_BATCH];
     double fac = 1.0;
@@ -139,9 +146,12 @@ static void rd_pair_batch(int n, const double *x0, const double *y0, const doubl
     for (it = 0; it < 100; it++) {
         int done = 1;
         for (i = 0; i < n; i++) {
+            /* (comparisons, not fmax, which is a call into libm here) */
             double m = (x[i] + y[i] + z[i]) / 3.0;
-            double dev = fmax(fabs(x[i] - m), fmax(fabs(y[i] - m), fabs(z[i] - m)));
-            if (dev > 1e-2 * m)
+            double dx = fabs(x[i] - m), dy = fabs(y[i] - m), dz = fabs(z[i] - m);
+            double dev = dx > dy ? dx : dy;
+            dev = dev > dz ? dev : dz;
+            if (dev > tol * m)
                 done = 0;
         }
         if (done)
@@ -543,7 +553,8 @@ static void axis_stress(double k, double nu, double z, double rda, double rdb, d
 /* The three functions maximised on the axis, with three derivatives:
    f[0] = (sxx - szz)/2, f[1] = (syy - szz)/2, f[2] = von Mises^2 (szz is the smallest
    principal stress on the axis for every b/a and nu: checked numerically), at n depths. */
-static void axis_targets(double k, double nu, int n, const double *zs, double (*f)[3][4])
+static void axis_targets(double k, double nu, int n, const double *zs, double (*f)[3][4],
+                         double tol)
 {
     double s2[RD_BATCH], A[RD_BATCH], B[RD_BATCH], rda[RD_BATCH], rdb[RD_BATCH];
     int i, j, l;
@@ -552,7 +563,7 @@ static void axis_targets(double k, double nu, int n, const double *zs, double (*
         A[l] = 1.0 + s2[l];
         B[l] = k * k + s2[l];
     }
-    rd_pair_batch(n, s2, B, A, rda, rdb);
+    rd_pair_batch(n, s2, B, A, rda, rdb, tol);
     for (l = 0; l < n; l++) {
         double s[3][4], d[3][4];
         axis_stress(k, nu, zs[l], rda[l], rdb[l], s);
@@ -602,12 +613,14 @@ static double hermite_d2(const double c[6], double t)
     return 2.0 * c[2] + t * (6.0 * c[3] + t * (12.0 * c[4] + t * 20.0 * c[5]));
 }
 
-/* Root of p' in (lo, hi) where p'(lo) > 0 >= p'(hi): bracketed Newton. */
-static double hermite_root(const double c[6], double lo, double hi)
+/* Root of p' in (lo, hi) where p'(lo) = dlo > 0 >= p'(hi) = dhi: bracketed Newton from
+   the secant point, to 1e-9 (the root only starts the search on the true function, which
+   needs a second round if the start is off by more than about 3e-4 of the depth). */
+static double hermite_root(const double c[6], double lo, double hi, double dlo, double dhi)
 {
-    double t = 0.5 * (lo + hi);
+    double t = lo + (hi - lo) * (dlo / (dlo - dhi));
     int i;
-    for (i = 0; i < 60; i++) {
+    for (i = 0; i < 30; i++) {
         double d1 = hermite_d1(c, t), d2 = hermite_d2(c, t), tn;
         if (d1 > 0.0)
             lo = t;
@@ -616,7 +629,7 @@ static double hermite_root(const double c[6], double lo, double hi)
         tn = d2 < 0.0 ? t - d1 / d2 : 0.5 * (lo + hi);
         if (!(tn > lo && tn < hi))
             tn = 0.5 * (lo + hi);
-        if (fabs(tn - t) < 1e-14)
+        if (fabs(tn - t) < 1e-9)
             return tn;
         t = tn;
     }
@@ -627,13 +640,166 @@ static double hermite_root(const double c[6], double lo, double hi)
 #define AXIS_SUB 4
 #define AXIS_CAND 12
 
+/* ------------------------------------------------------------------ axis maxima, direct
+
+   For 0.25 <= nu <= 0.5 and 1e-3 <= b/a <= 1 (steels and most other metals, polymers,
+   rubber) the search below is not needed: there, on the z axis (checked at 2236 points of
+   a grid and 3000 random points of that rectangle, with every stationary point of the
+   three targets found on a fine table of depths and refined),
+     - (syy - szz)/2 has exactly one interior maximum and no interior minimum,
+     - von Mises^2 has exactly one interior maximum (and at most one interior minimum,
+       between it and the surface),
+     - the interior maximum of (sxx - szz)/2, if any, is below the larger of that of
+       (syy - szz)/2 and the surface values (by 2e-7 relative at b/a = 1 - 1e-6, by 0.5%
+       at b/a = 0.975, by 1.8% or more for b/a <= 0.9; equal for the circle, where the two
+       targets are the same function).
+   The depths of the two maxima, divided by b, are smooth in (b/a, nu) and are fitted by
+   Chebyshev polynomials in x = 2 b/a - 1 and y = (nu - 0.375)/0.125 plus (b/a)^2j ln(b/a)
+   times polynomials in y (the expansion about the line contact has such terms): largest
+   relative error 5.7e-6 (tau) and 1.4e-5 (von Mises) over the same points (least
+   squares; the fit and the checks above: tools/fit_axis_depths.py). One exact evaluation
+   at the fitted depths and Halley's step, accepted as in the search (step below 3e-4 of
+   the depth: error of order 1e-15 of the depth from these starts), give the maxima; the
+   surface is evaluated exactly in the same batch, so three R_D pairs in all instead of
+   eight (seven before the table used RD_ROUGH). If a step is not accepted after two rounds, or f'' >= 0 (never seen), the general
+   search runs. Outside the rectangle the general search always runs; compiled with
+   HERTZ_STRESS_SEARCH_ONLY, everywhere (tests/test_stress_kernel.py compares the two). */
+#define FIT_DK 8
+#define FIT_DN 5
+#define FIT_DL 3
+static const double fit_tau_c[9][6] = {
+    {0.52437894321891443, -0.092897348651628131, 0.019046185856331891, 0.00097962098599041784, 0, 0},
+    {-0.28177434677894014, -0.077791528329578918, 0.017597561462547307, 0.00093650399060903576, 0, 0},
+    {0.072738698001394486, 0.080843303826449026, -0.012813892569394711, -0.0006379843033330197, 0, 0},
+    {0.13714078670351781, 0.096230752267578601, -0.016994280101696058, -0.00090363784111817998, 0, 0},
+    {0.049324020537613096, 0.033041611862331885, -0.006214633964069005, -0.00033884326581730195, 0, 0},
+    {0.0045041505381701753, 0.0024524344943268441, -0.00052872966821892369, -2.7467923044244351e-05, 0, 0},
+    {-0.00039013498290082767, -0.00010639610622207106, 5.0882591029209601e-05, 2.3978323586657836e-06, 0, 0},
+    {3.1477359679554102e-05, -6.3504340370430715e-06, -5.9465473898930806e-06, -2.3310502256698614e-07, 0, 0},
+    {0, 0, 0, 0, 0, 0},
+};
+static const double fit_tau_d[3][6] = {
+    {0.36201960405526418, -0.19598197339675982, -0.0038586660589028984, -0.00075530275331870105, 0, 0},
+    {-4.8676901235725074, -3.186795643278161, 0.59877874548995469, 0.032332193931481609, 0, 0},
+    {0, 0, 0, 0, 0, 0},
+};
+static const double fit_vm_c[9][6] = {
+    {2.0442701924789941, 0.88421277127017373, 0.18024958862717799, 0.04251019719363569, 0.010814904300525896, -0.0013744761313239096},
+    {2.1139748149502831, 0.79644936955321222, 0.39533248719155345, 0.070835585170702764, 0.013352137016018922, 0.00015001219858065684},
+    {0.44644119228007167, -0.50944096278469697, 0.19688307064909999, 0.019547455892415307, -0.0024660321858698472, 0.0031124608968731704},
+    {-1.4093920363822312, -0.75217618378263607, -0.20073851344629429, -0.04308098846286379, -0.010274571053110471, 0.0010198176896523137},
+    {-1.7085327890906967, -0.31730016711408648, -0.34826393395655614, -0.05624056129476479, -0.0078863188233971974, -0.0014633406140269801},
+    {-0.81461973822033684, -0.055321446813644037, -0.18461824203593555, -0.027853691329836741, -0.0029778354596383116, -0.0011774857147802409},
+    {-0.16052860329876062, -0.0041146647428760286, -0.037434823866511646, -0.005511806295239452, -0.00054119290235576933, -0.00025903226468407259},
+    {-0.00588658067539094, -0.00058634941991195927, -0.0013203841455200205, -0.00020388000274253193, -2.2031379710241161e-05, -8.2086908908540757e-06},
+    {0.00022770245375047793, 4.5036302566216907e-05, 4.8067810972440839e-05, 8.0623663116785593e-06, 9.3014237562139002e-07, 2.5716848814361093e-07},
+};
+static const double fit_vm_d[3][6] = {
+    {0.011240532589863572, 0.046626983879354933, 0.032132701296982091, 0.012585293919698551, -0.0011029476930595195, 0.0012899940996165538},
+    {-60.17507867585455, 21.727856739772598, -18.35839072420708, -2.2796596776547347, -0.018432701097938903, -0.20879494281282249},
+    {184.99053451658958, 7.4941301256633919, 42.767692817254087, 6.3526643491055097, 0.63976241289309022, 0.28907155702098963},
+};
+
+#define FAST_NU_MIN 0.25
+#define FAST_K_MIN 1e-3
+
+static double fit_eval(const double c[FIT_DK + 1][FIT_DN + 1], const double d[FIT_DL][FIT_DN + 1],
+                       const double *tx, const double *ty, const double *kl)
+{
+    double u = 0.0;
+    int i, m;
+    for (m = 0; m <= FIT_DN; m++) {
+        double s = 0.0;
+        for (i = 0; i <= FIT_DK; i++)
+            s += c[i][m] * tx[i];
+        for (i = 0; i < FIT_DL; i++)
+            s += d[i][m] * kl[i];
+        u += s * ty[m];
+    }
+    return u;
+}
+
+/* The maxima from the fitted depths; returns 0 (val, dep then undefined) when the general
+   search must run instead. */
+static int axis_maxima_direct(double k, double nu, double val[3], double dep[3])
+{
+    double tx[FIT_DK + 1], ty[FIT_DN + 1], kl[FIT_DL], x = 2.0 * k - 1.0,
+           y = (nu - 0.375) / 0.125, lk = log(k), k2 = k * k;
+    double zs[3], fz[3][3][4], cz[2], cv[2];
+    int i, l, na, idx[2], done[2] = {0, 0}, round;
+    if (!(nu >= FAST_NU_MIN && k >= FAST_K_MIN))
+        return 0;
+    tx[0] = ty[0] = 1.0;
+    tx[1] = x;
+    ty[1] = y;
+    for (i = 2; i <= FIT_DK; i++)
+        tx[i] = 2.0 * x * tx[i - 1] - tx[i - 2];
+    for (i = 2; i <= FIT_DN; i++)
+        ty[i] = 2.0 * y * ty[i - 1] - ty[i - 2];
+    kl[0] = k2 * lk;
+    for (i = 1; i < FIT_DL; i++)
+        kl[i] = kl[i - 1] * k2;
+    cz[0] = k * fit_eval(fit_tau_c, fit_tau_d, tx, ty, kl);   /* target 1: (syy - szz)/2 */
+    cz[1] = k * fit_eval(fit_vm_c, fit_vm_d, tx, ty, kl);     /* target 2: von Mises^2 */
+    for (round = 0; round < 2; round++) {
+        na = 0;
+        for (l = 0; l < 2; l++)
+            if (!done[l])
+                zs[na] = cz[l], idx[na++] = l;
+        if (round == 0) {
+            zs[na] = 0.0;             /* the surface, exactly */
+            axis_targets(k, nu, na + 1, zs, fz, RD_EXACT);
+        } else {
+            axis_targets(k, nu, na, zs, fz, RD_EXACT);
+        }
+        for (i = 0; i < na; i++) {
+            double *g = fz[i][idx[i] + 1], den, step;
+            l = idx[i];
+            if (!(g[2] < 0.0))
+                return 0;
+            den = 2.0 * g[2] * g[2] - g[1] * g[3];
+            step = den > 0.0 ? -2.0 * g[1] * g[2] / den : -g[1] / g[2];
+            if (fabs(step) <= 3e-4 * zs[i]) {
+                /* as in the search: error of order step^3 / z^2, value from Taylor */
+                cv[l] = g[0] + step * (g[1] + step * (0.5 * g[2] + step * g[3] / 6.0));
+                done[l] = 1;
+            }
+            cz[l] = zs[i] + step;
+            if (!(cz[l] > 0.0))
+                return 0;
+        }
+        if (round == 0) {
+            for (i = 0; i < 3; i++) {
+                val[i] = fz[na][i][0];
+                dep[i] = 0.0;
+            }
+        }
+        if (done[0] && done[1])
+            break;
+    }
+    if (!(done[0] && done[1]))
+        return 0;
+    for (l = 0; l < 2; l++) {
+        if (cv[l] > val[l + 1]) {
+            val[l + 1] = cv[l];
+            dep[l + 1] = cz[l];
+        }
+    }
+    if (k == 1.0) {
+        val[0] = val[1];
+        dep[0] = dep[1];
+    }
+    return 1;
+}
+
 /* Largest value of each target on the z axis: value and depth (normalised, b = k).
-   The targets are tabulated with their first two derivatives on a grid of depths; in
-   every cell the quintic Hermite interpolant locates the candidate maxima (also a
-   maximum and a minimum in one cell, which the signs of f' at the grid points would
-   miss). Candidates that cannot beat a value already known are dropped; the others are
-   refined together by Newton's method on f' = 0 (bisection when a step leaves its cell
-   or f'' >= 0) and compared with the values at the surface. */
+   The targets are tabulated with their first two derivatives on a grid of depths (with
+   R_D good to 1e-9, enough to locate the maxima); in every cell the quintic Hermite
+   interpolant locates the candidate maxima (also a maximum and a minimum in one cell,
+   which the signs of f' at the grid points would miss). Candidates that cannot beat a
+   value already known are dropped; the others are refined together by Halley's method
+   on f' = 0 with the exact R_D (bisection when a step leaves its cell or f'' >= 0) and
+   compared with the values at the surface, computed exactly with the first round. */
 static void axis_maxima(double k, double nu, double val[3], double dep[3])
 {
     static const double grid[AXIS_GRID] = {0.0, 0.25, 0.55, 0.9, 1.4};
@@ -643,17 +809,13 @@ static void axis_maxima(double k, double nu, double val[3], double dep[3])
     double known[2];   /* lower bounds of the answer: tau (targets 0, 1), von Mises^2 */
     for (j = 0; j < AXIS_GRID; j++)
         z[j] = grid[j] * k;
-    axis_targets(k, nu, AXIS_GRID, z, f);
+    axis_targets(k, nu, AXIS_GRID, z, f, RD_ROUGH);
     /* extend the grid while a target still increases at its deepest point */
     while (n < AXIS_GRID + 8 && (f[n - 1][0][1] > 0.0 || f[n - 1][1][1] > 0.0
                                  || f[n - 1][2][1] > 0.0)) {
         z[n] = 1.5 * z[n - 1];
-        axis_targets(k, nu, 1, z + n, f + n);
+        axis_targets(k, nu, 1, z + n, f + n, RD_ROUGH);
         n++;
-    }
-    for (i = 0; i < 3; i++) {
-        val[i] = f[0][i][0];                  /* the surface */
-        dep[i] = 0.0;
     }
     known[0] = known[1] = 0.0;
     for (j = 0; j < n; j++) {
@@ -672,7 +834,8 @@ static void axis_maxima(double k, double nu, double val[3], double dep[3])
                 double t1 = (double)m / AXIS_SUB;
                 double d1 = m == AXIS_SUB ? h * f[j + 1][i][1] : hermite_d1(c, t1);
                 if (prev > 0.0 && d1 <= 0.0 && nc < AXIS_CAND) {
-                    double tg = m == AXIS_SUB && d1 == 0.0 ? 1.0 : hermite_root(c, t0, t1);
+                    double tg = m == AXIS_SUB && d1 == 0.0 ? 1.0
+                                : hermite_root(c, t0, t1, prev, d1);
                     double est = c[0] + tg * (c[1] + tg * (c[2] + tg * (c[3] + tg * (c[4]
                                  + tg * c[5]))));
                     /* the interpolant is good to far better than 1e-3 of the value */
@@ -691,16 +854,26 @@ static void axis_maxima(double k, double nu, double val[3], double dep[3])
             }
         }
     }
-    /* Newton's method for all candidates at once */
+    /* Halley's method for all candidates at once; the first round also evaluates the
+       surface z = 0 (the last point of its batch) exactly */
     for (round = 0; round < 60; round++) {
-        double zs[AXIS_CAND], fz[AXIS_CAND][3][4];
+        double zs[AXIS_CAND + 1], fz[AXIS_CAND + 1][3][4];
         int idx[AXIS_CAND], na = 0, l;
         for (l = 0; l < nc; l++)
             if (cact[l])
                 zs[na] = cz[l], idx[na++] = l;
-        if (na == 0)
+        if (round == 0) {
+            zs[na] = 0.0;
+            axis_targets(k, nu, na + 1, zs, fz, RD_EXACT);
+            for (i = 0; i < 3; i++) {
+                val[i] = fz[na][i][0];        /* the surface */
+                dep[i] = 0.0;
+            }
+        } else if (na == 0) {
             break;
-        axis_targets(k, nu, na, zs, fz);
+        } else {
+            axis_targets(k, nu, na, zs, fz, RD_EXACT);
+        }
         for (m = 0; m < na; m++) {
             double *g = fz[m][ci[idx[m]]], zg = zs[m], step, zn;
             l = idx[m];
@@ -779,7 +952,10 @@ int hertz_subsurface(double a, double b, double nu, double out[12])
         return HERTZ_STRESS_ENU;
     }
     k = b / a;
-    axis_maxima(k, nu, val, dep);
+#ifndef HERTZ_STRESS_SEARCH_ONLY     /* (defined by the tests: the general search alone) */
+    if (!axis_maxima_direct(k, nu, val, dep))
+#endif
+        axis_maxima(k, nu, val, dep);
     i = val[1] > val[0] ? 1 : 0;
     out[0] = val[i];
     out[1] = dep[i] * a;
