@@ -11,6 +11,9 @@ quadratic gap of the scene's curvatures between their flat faces (see
 ``fem_validation.solve``).  Needs the ``fem`` extra (scikit-fem, meshio, gmsh,
 pyamg, matplotlib); the geometry is meshes/blocks.geo (see
 ``fem_validation.mesh.geometry_file``).
+
+True curved bodies (a ball on a plane and in a groove, node-to-surface contact):
+``fem_validation.curved`` (``python -m fem_validation --curved``).
 """
 
 from __future__ import annotations
@@ -21,6 +24,15 @@ from pathlib import Path
 
 from . import memory
 from .compare import TARGETS, Comparison, check, compare_with_hertz, profiles
+from .curved import (
+    A_OVER_R,
+    CurvedComparison,
+    compare_curved,
+    run_curved,
+    solve_curved,
+    validate_curved,
+)
+from .curved_mesh import DEFAULT_CURVED_LEVEL, CurvedScene, ball_groove, build_curved, sphere_plane
 from .errors import FEMValidationError
 from .mesh import DEFAULT_LEVEL, LEVEL_H0, LEVEL_SCALE, BlockMesh, build
 from .output import plot_profiles, write_reports, write_vtu
@@ -34,6 +46,8 @@ from .solve import (
 )
 
 __all__ = [
+    "A_OVER_R",
+    "DEFAULT_CURVED_LEVEL",
     "DEFAULT_LEVEL",
     "KAPPA",
     "LEVEL_H0",
@@ -42,17 +56,26 @@ __all__ = [
     "BlockMesh",
     "Comparison",
     "ContactSolution",
+    "CurvedComparison",
+    "CurvedScene",
     "FEMValidationError",
     "Scene",
+    "ball_groove",
     "build",
+    "build_curved",
     "check",
+    "compare_curved",
     "compare_with_hertz",
     "crossed_30deg",
     "default_scenes",
     "equal_steel",
+    "run_curved",
     "solve_contact",
+    "solve_curved",
+    "sphere_plane",
     "steel_on_aluminium",
     "validate",
+    "validate_curved",
 ]
 
 log = logging.getLogger("fem_validation")

@@ -4,11 +4,16 @@
     python -m fem_validation --alpha 2 7 --level 2 # equal steel bodies, alpha = 2 and 7
     python -m fem_validation --scene crossed-30deg --out DIR
     python -m fem_validation --study alpha-3 --levels 1 2 3 4 5
+    python -m fem_validation --curved --out DIR    # a ball on a plane and in a groove
+    python -m fem_validation --curved --level 2 --a-over-r 0.01 0.2 --out DIR
+    python -m fem_validation --curved --levels 3 4 --out DIR  # two levels, one table
 
 Writes DIR/report.json, DIR/report.md, <scene>_body1.vtu, <scene>_body2.vtu and
 <scene>_pressure.png per scene (a study writes study.json, study.md and
-study.png); with --readme also the README's tables and docs/fem/*.png.  Errors
-print one line on stderr and exit with status 2.
+study.png; --curved writes curved.json, curved.md and curved.png, at the
+levels 0-4 of fem_validation.curved_mesh, default 3); with --readme also the
+README's tables and docs/fem/*.png.  Errors print one line on stderr and exit
+with status 2.
 """
 
 from __future__ import annotations
@@ -23,6 +28,8 @@ from os import cpu_count
 from pathlib import Path
 
 from . import FEMValidationError, reports, validate
+from .curved import A_OVER_R, run_curved
+from .curved_mesh import DEFAULT_CURVED_LEVEL
 from .mesh import DEFAULT_LEVEL, LEVEL_H0, LEVEL_RATIO, LEVEL_SCALE
 from .scenes import NAMED, default_scenes, equal_steel
 from .solve import INITIAL_ACTIVE, REBUILD_FRACTION
@@ -66,13 +73,21 @@ def _parser() -> argparse.ArgumentParser:
                    help="equal steel bodies with curvature ratio A (repeatable)")
     p.add_argument("--scene", nargs="+", metavar="NAME", default=[],
                    help=f"named scenes: alpha-<A>, {', '.join(NAMED)}")
-    p.add_argument("--level", type=int, default=DEFAULT_LEVEL, choices=sorted(LEVEL_SCALE),
-                   help=f"mesh level (default {DEFAULT_LEVEL}); each level divides every "
-                        f"element size by {LEVEL_RATIO:.3g}")
+    p.add_argument("--level", type=int, default=None, choices=sorted(LEVEL_SCALE),
+                   help=f"mesh level (default {DEFAULT_LEVEL}; with --curved 0-4, default "
+                        f"{DEFAULT_CURVED_LEVEL}); each level divides every element size by "
+                        f"{LEVEL_RATIO:.3g}")
+    p.add_argument("--curved", action="store_true",
+                   help="true curved bodies: a steel ball on a flat block and in a groove "
+                        "(R_g = 1.04 R) at several loads; curved.json, .md, .png")
+    p.add_argument("--a-over-r", type=float, nargs="+", default=list(A_OVER_R), metavar="X",
+                   help="with --curved: target Hertz semi-major axis over the ball radius "
+                        f"(default {' '.join(map(str, A_OVER_R))})")
     p.add_argument("--study", metavar="NAME", help="mesh-refinement study of one scene")
-    p.add_argument("--levels", type=int, nargs="+", default=list(DEFAULT_LEVELS),
+    p.add_argument("--levels", type=int, nargs="+", default=None,
                    help=f"consecutive levels of the study (default "
-                        f"{' '.join(map(str, DEFAULT_LEVELS))})")
+                        f"{' '.join(map(str, DEFAULT_LEVELS))}); with --curved, the levels "
+                        f"to run (instead of --level)")
     p.add_argument("--initial-active", choices=(*INITIAL_ACTIVE, "nested"), default="hertz",
                    help="first active set of the contact iteration (default: Hertz's ellipse)")
     p.add_argument("--amg-rebuild", type=float, default=REBUILD_FRACTION, metavar="FRACTION",
@@ -94,6 +109,22 @@ def main(argv=None) -> int:
     logging.getLogger("skfem").setLevel(logging.ERROR)
     try:
         args.out.mkdir(parents=True, exist_ok=True)
+        if args.curved:
+            if args.readme:
+                raise ValueError("--readme does not apply to --curved: merge curved.md and "
+                                 "curved.png by hand")
+            levels = ([DEFAULT_CURVED_LEVEL] if args.level is None and args.levels is None
+                      else args.levels or [args.level])
+            command = " ".join(["python -m fem_validation", *argv])
+            _, json_path, md_path, png_path = run_curved(args.out, levels, args.a_over_r,
+                                                         command)
+            print(md_path.read_text())
+            log.info("wrote %s, %s and %s", json_path, md_path, png_path)
+            return 0
+        if args.level is None:
+            args.level = DEFAULT_LEVEL
+        if args.levels is None:
+            args.levels = list(DEFAULT_LEVELS)
         if args.study:
             study = refinement_study(_scene(args.study), args.levels, args.out)
             print(json.dumps({k: study[k] for k in ("rates", "extrapolated", "three_level")},
