@@ -27,7 +27,7 @@ import time
 from os import cpu_count
 from pathlib import Path
 
-from . import FEMValidationError, reports, validate
+from . import NESTED_REBUILD_FRACTION, FEMValidationError, reports, validate
 from .curved import A_OVER_R, run_curved
 from .curved_mesh import DEFAULT_CURVED_LEVEL
 from .mesh import DEFAULT_LEVEL, LEVEL_H0, LEVEL_RATIO, LEVEL_SCALE
@@ -90,9 +90,10 @@ def _parser() -> argparse.ArgumentParser:
                         f"to run (instead of --level)")
     p.add_argument("--initial-active", choices=(*INITIAL_ACTIVE, "nested"), default="hertz",
                    help="first active set of the contact iteration (default: Hertz's ellipse)")
-    p.add_argument("--amg-rebuild", type=float, default=REBUILD_FRACTION, metavar="FRACTION",
+    p.add_argument("--amg-rebuild", type=float, default=None, metavar="FRACTION",
                    help="rebuild the AMG preconditioner when more than FRACTION of the active "
-                        f"pairs changed since its setup (default {REBUILD_FRACTION}; inf: once)")
+                        f"pairs changed since its setup (default {REBUILD_FRACTION}, "
+                        f"{NESTED_REBUILD_FRACTION} for a nested start's fine solve; inf: once)")
     p.add_argument("--out", type=Path, default=Path("fem_out"), help="output directory")
     p.add_argument("--readme", action="store_true",
                    help="also put the table (or the study) into README.md and the plots "

@@ -285,6 +285,17 @@ def test_a_cold_start_reaches_the_same_solution(coarse):
     assert cold.amg_setups > 1 and cold.active_set_iterations > sol.active_set_iterations
 
 
+def test_a_nested_start_reaches_the_hertz_start_solution():
+    """validate(initial_active="nested"): coarse solve from the overlap, transfer, fine solve
+    with its own rebuild threshold; the same contact as Hertz's start (level 2)."""
+    scene = fv.equal_steel(3)
+    warm = fv.validate(scene, level=2)
+    cold = fv.validate(scene, level=2, initial_active="nested")
+    for key in ("a_rel_err", "b_rel_err", "p0_rel_err", "von_mises_rel_err"):
+        assert getattr(cold, key) == pytest.approx(getattr(warm, key), abs=1e-6)
+    assert cold.solver["amg_setups"] > 1
+
+
 def test_post_processing_recovers_an_exact_hertz_field():
     rng = np.random.default_rng(4)
     a, b, p0, theta = 2.0, 1.0, 3.0, math.radians(-75)
