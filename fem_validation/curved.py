@@ -55,9 +55,7 @@ from dataclasses import asdict, dataclass, field
 from pathlib import Path
 
 import numpy as np
-import pyamg
 from scipy import sparse
-from scipy.sparse.linalg import cg
 
 from . import memory
 from .compare import active_edge_points, edge_ellipse, fit_ellipse, moment_ellipse
@@ -74,17 +72,11 @@ from .curved_output import curved_markdown, plot_curved
 from .elasticity import rigid_body_modes, stiffness
 from .errors import FEMValidationError
 from .solve import (
-    AMG_MAX_COARSE,
     AMG_MODES,
-    AMG_SMOOTH,
-    CG_MAXITER,
-    CG_RTOL,
     KAPPA,
-    LOOSE_REDUCTION,
-    MAX_ACTIVE_SET_ITERATIONS,
     REBUILD_FRACTION,
-    SETTLED_FRACTION,
     boussinesq_settlement,
+    iterate_active_set,
 )
 
 log = logging.getLogger("fem_validation")
@@ -152,14 +144,6 @@ def settlement(scene: CurvedScene, mesh: CurvedMesh, load: float) -> float:
 def imposed_approach(scene: CurvedScene, mesh: CurvedMesh) -> float:
     """Approach of the far faces aimed at the target load: Hertz's delta less the settlement."""
     return scene.hertz().delta - settlement(scene, mesh, scene.load)
-
-
-def _amg(A, B):
-    ml = pyamg.smoothed_aggregation_solver(A.tobsr(blocksize=(3, 3)), B=B,
-                                           symmetry="symmetric", smooth=AMG_SMOOTH,
-                                           improve_candidates=None, max_coarse=AMG_MAX_COARSE,
-                                           coarse_solver="splu")
-    return ml.aspreconditioner(cycle="V")
 
 
 def solve_curved(scene: CurvedScene, mesh: CurvedMesh, approach: float | None = None,
@@ -232,59 +216,17 @@ def solve_curved(scene: CurvedScene, mesh: CurvedMesh, approach: float | None = 
 
     x = np.zeros(n)
     x[fixed] = values[fixed]
-    cg_iterations, seen = [], []
-    preconditioner, built_on, setups = None, None, 0
-    accurate = True
-    seconds["amg setup"] = seconds["cg"] = 0.0
-    for iteration in range(1, MAX_ACTIVE_SET_ITERATIONS + 1):
-        t1 = time.perf_counter()
-        k = np.where(active, k_all, 0.0)
+
+    def system_for(act):
+        k = np.where(act, k_all, 0.0)
         A = (K + gap_op.T @ sparse.diags(k) @ gap_op).tocsr()
         b = load - gap_op.T @ (k * g0)
         b[fixed] = values[fixed]
-        if preconditioner is None or (np.sum(active != built_on)
-                                      > rebuild_fraction * max(built_on.sum(), 1)):
-            preconditioner, built_on = _amg(A, B), active.copy()
-            setups += 1
-            seconds["amg setup"] += time.perf_counter() - t1
-        count = [0]
+        return A, b
 
-        def step(_xk, count=count):
-            count[0] += 1
-
-        t2 = time.perf_counter()
-        bnorm = np.linalg.norm(b)
-        atol = 0.0 if accurate else LOOSE_REDUCTION * np.linalg.norm(b - A @ x)
-        x, info = cg(A, b, x0=x, rtol=CG_RTOL, atol=atol, maxiter=CG_MAXITER,
-                     M=preconditioner, callback=step)
-        seconds["cg"] += time.perf_counter() - t2
-        residual = np.linalg.norm(b - A @ x) / bnorm
-        rtol = max(CG_RTOL, atol / bnorm)
-        if info != 0 or not residual < 10 * rtol:
-            raise FEMValidationError(
-                f"{scene.name}: conjugate gradients did not converge at active-set iteration "
-                f"{iteration} (info {info}, {count[0]} iterations, relative residual "
-                f"{residual:.2e}, {n} dofs, {active.sum()} active nodes)")
-        cg_iterations.append(count[0])
-        gap = g0 + gap_op @ x
-        new_active = gap < 0
-        changed = int(np.sum(new_active != active))
-        log.info("%s: active-set iteration %d: %d active nodes, %d changed, %d CG iterations "
-                 "to %.0e (%.1f s)", scene.name, iteration, new_active.sum(), changed,
-                 count[0], rtol, time.perf_counter() - t1)
-        if changed == 0 and accurate:
-            break
-        if accurate and any(np.array_equal(new_active, s) for s in seen):
-            raise FEMValidationError(f"{scene.name}: the active set cycles at iteration "
-                                     f"{iteration} ({new_active.sum()} active, {changed} "
-                                     f"changing)")
-        if accurate:
-            seen.append(active)
-        accurate = changed <= SETTLED_FRACTION * max(new_active.sum(), 1)
-        active = new_active
-    else:
-        raise FEMValidationError(f"{scene.name}: the active set still changed by {changed} "
-                                 f"nodes after {MAX_ACTIVE_SET_ITERATIONS} iterations")
+    run = iterate_active_set(scene.name, system_for, lambda u: g0 + gap_op @ u, active, x, B,
+                             rebuild_fraction, True, seconds, what="nodes")
+    x, gap, active = run.x, run.gap, run.active
     normal_force = np.where(active, k_all * -gap, 0.0)
     vertical = normal_force * proj.normal[:, 2]
     reaction = k_ball @ x[:n1]
@@ -294,8 +236,8 @@ def solve_curved(scene: CurvedScene, mesh: CurvedMesh, approach: float | None = 
         pressure=np.where(active, penalty * -gap, 0.0), active=active,
         vertical_force=vertical, force=4.0 * float(vertical.sum()),
         equator_reaction=-4.0 * float(reaction[3 * mesh.fixed[0] + 2].sum()),
-        approach=approach, penalty=penalty, dofs=n, active_set_iterations=iteration,
-        cg_iterations=cg_iterations, amg_setups=setups, seconds=seconds)
+        approach=approach, penalty=penalty, dofs=n, active_set_iterations=run.iterations,
+        cg_iterations=run.cg_iterations, amg_setups=run.amg_setups, seconds=seconds)
 
 
 @dataclass

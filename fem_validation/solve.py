@@ -26,6 +26,7 @@ from __future__ import annotations
 
 import logging
 import time
+from collections.abc import Callable
 from dataclasses import dataclass, field
 
 import numpy as np
@@ -251,6 +252,112 @@ def _amg(A, B):
     return ml.aspreconditioner(cycle="V")
 
 
+@dataclass
+class ActiveSetResult:
+    """What :func:`iterate_active_set` leaves: the solution, the final gap and active set,
+    and the solver's counts (iterations, CG iterations per solve, AMG setups)."""
+
+    x: np.ndarray
+    gap: np.ndarray
+    active: np.ndarray
+    iterations: int
+    cg_iterations: list[int]
+    amg_setups: int
+
+
+def iterate_active_set(name: str, system_for: Callable, gap_of: Callable, active: np.ndarray,
+                       x: np.ndarray, B: np.ndarray, rebuild_fraction: float, accurate: bool,
+                       seconds: dict, what: str = "pairs", hint: str = "") -> ActiveSetResult:
+    """The penalty contact's active-set iteration, shared by the blocks and the curved bodies.
+
+    Each iteration assembles the system for the current active set, solves it by
+    AMG-preconditioned conjugate gradients from the previous solution, and takes the
+    contacts with a negative gap as the next active set, until it no longer changes.  While
+    the set changes by more than SETTLED_FRACTION, a solve only reduces its residual
+    1/LOOSE_REDUCTION times; the AMG preconditioner is rebuilt when more than
+    ``rebuild_fraction`` of the contacts changed state since its setup.
+
+    Parameters
+    ----------
+    name : str
+        The scene, for messages.
+    system_for : callable
+        active (bool array) -> (A, b), the sparse matrix [N/m] and right-hand side [N].
+    gap_of : callable
+        x -> the gap of every contact [m] (negative: penetration).
+    active : ndarray of bool
+        The first active set.
+    x : ndarray
+        The first guess [m], with the prescribed values at the fixed dofs.
+    B : ndarray
+        Near-nullspace modes for the AMG setup.
+    rebuild_fraction : float
+        See above (``inf``: build once).
+    accurate : bool
+        Whether the first solve is already to CG_RTOL (a first set that is likely final).
+    seconds : dict
+        Accumulates "amg setup" and "cg" [s].
+    what, hint : str
+        The contacts' name ("pairs", "nodes") and a hint for the cycling error.
+
+    Raises
+    ------
+    FEMValidationError
+        If CG does not converge, the active set cycles or it still changes after
+        MAX_ACTIVE_SET_ITERATIONS.
+    """
+    cg_iterations, seen = [], []
+    preconditioner, built_on, setups = None, None, 0
+    seconds["amg setup"] = seconds["cg"] = 0.0
+    for iteration in range(1, MAX_ACTIVE_SET_ITERATIONS + 1):
+        t1 = time.perf_counter()
+        A, b = system_for(active)
+        if preconditioner is None or (np.sum(active != built_on)
+                                      > rebuild_fraction * max(built_on.sum(), 1)):
+            preconditioner, built_on = _amg(A, B), active.copy()
+            setups += 1
+            seconds["amg setup"] += time.perf_counter() - t1
+        count = [0]
+
+        def step(_xk, count=count):
+            count[0] += 1
+
+        t2 = time.perf_counter()
+        bnorm = np.linalg.norm(b)
+        # accurate: |r| <= CG_RTOL |b|; loose: the residual reduced LOOSE_REDUCTION times
+        atol = 0.0 if accurate else LOOSE_REDUCTION * np.linalg.norm(b - A @ x)
+        x, info = cg(A, b, x0=x, rtol=CG_RTOL, atol=atol, maxiter=CG_MAXITER,
+                     M=preconditioner, callback=step)
+        seconds["cg"] += time.perf_counter() - t2
+        residual = np.linalg.norm(b - A @ x) / bnorm
+        rtol = max(CG_RTOL, atol / bnorm)
+        if info != 0 or not residual < 10 * rtol:
+            raise FEMValidationError(
+                f"{name}: conjugate gradients did not converge at active-set iteration "
+                f"{iteration} (info {info}, {count[0]} iterations, relative residual "
+                f"{residual:.2e}, {len(x)} dofs, {active.sum()} active {what})")
+        cg_iterations.append(count[0])
+        gap = gap_of(x)
+        new_active = gap < 0
+        changed = int(np.sum(new_active != active))
+        log.info("%s: active-set iteration %d: %d active %s, %d changed, %d CG iterations "
+                 "to %.0e (%.1f s)", name, iteration, new_active.sum(), what, changed,
+                 count[0], rtol, time.perf_counter() - t1)
+        if changed == 0 and accurate:
+            return ActiveSetResult(x, gap, active, iteration, cg_iterations, setups)
+        if accurate and any(np.array_equal(new_active, s) for s in seen):
+            raise FEMValidationError(
+                f"{name}: the active set cycles at iteration {iteration} "
+                f"({new_active.sum()} active {what}, {changed} changing){hint}")
+        if accurate:
+            seen.append(active)
+        accurate = changed <= SETTLED_FRACTION * max(new_active.sum(), 1)
+        active = new_active
+    raise FEMValidationError(
+        f"{name}: the active set still changed by {changed} {what} after "
+        f"{MAX_ACTIVE_SET_ITERATIONS} iterations ({new_active.sum()} active)")
+
+
 def solve_contact(scene: Scene, mesh: BlockMesh, approach: float | None = None,
                   kappa: float = KAPPA, initial_active: str | np.ndarray = "hertz",
                   rebuild_fraction: float = REBUILD_FRACTION) -> ContactSolution:
@@ -302,61 +409,14 @@ def solve_contact(scene: Scene, mesh: BlockMesh, approach: float | None = None,
     g0 = gap0(scene, xy)
     x = np.zeros(system.n)
     x[system.fixed] = system.values[system.fixed]
-    cg_iterations, seen = [], []
-    preconditioner, built_on, setups = None, None, 0
     # Loose solves until the active set changes little; the first solve is accurate
     # only from Hertz's ellipse, which is usually the final set already.
-    accurate = isinstance(initial_active, str) and initial_active == "hertz"
-    seconds["amg setup"] = seconds["cg"] = 0.0
-    for iteration in range(1, MAX_ACTIVE_SET_ITERATIONS + 1):
-        t1 = time.perf_counter()
-        A, b = system.matrix_and_rhs(np.where(active, k_all, 0.0), g0)
-        if preconditioner is None or (np.sum(active != built_on)
-                                      > rebuild_fraction * max(built_on.sum(), 1)):
-            preconditioner, built_on = _amg(A, system.B), active.copy()
-            setups += 1
-            seconds["amg setup"] += time.perf_counter() - t1
-        count = [0]
-
-        def step(_xk, count=count):
-            count[0] += 1
-
-        t2 = time.perf_counter()
-        bnorm = np.linalg.norm(b)
-        # accurate: |r| <= CG_RTOL |b|; loose: the residual reduced LOOSE_REDUCTION times
-        atol = 0.0 if accurate else LOOSE_REDUCTION * np.linalg.norm(b - A @ x)
-        x, info = cg(A, b, x0=x, rtol=CG_RTOL, atol=atol, maxiter=CG_MAXITER,
-                     M=preconditioner, callback=step)
-        seconds["cg"] += time.perf_counter() - t2
-        residual = np.linalg.norm(b - A @ x) / bnorm
-        rtol = max(CG_RTOL, atol / bnorm)
-        if info != 0 or not residual < 10 * rtol:
-            raise FEMValidationError(
-                f"{scene.name}: conjugate gradients did not converge at active-set iteration "
-                f"{iteration} (info {info}, {count[0]} iterations, relative residual "
-                f"{residual:.2e}, {system.n} dofs, {active.sum()} active pairs)")
-        cg_iterations.append(count[0])
-        gap = g0 + x[system.dz1] - x[system.dz2]
-        new_active = gap < 0
-        changed = int(np.sum(new_active != active))
-        log.info("%s: active-set iteration %d: %d active pairs, %d changed, %d CG iterations "
-                 "to %.0e (%.1f s)", scene.name, iteration, new_active.sum(), changed, count[0],
-                 rtol, time.perf_counter() - t1)
-        if changed == 0 and accurate:
-            break
-        if accurate and any(np.array_equal(new_active, s) for s in seen):
-            raise FEMValidationError(
-                f"{scene.name}: the active set cycles at iteration {iteration} "
-                f"({new_active.sum()} active pairs, {changed} changing); "
-                f"try a finer mesh or a smaller penalty (kappa = {kappa:g})")
-        if accurate:
-            seen.append(active)
-        accurate = changed <= SETTLED_FRACTION * max(new_active.sum(), 1)
-        active = new_active
-    else:
-        raise FEMValidationError(
-            f"{scene.name}: the active set still changed by {changed} pairs after "
-            f"{MAX_ACTIVE_SET_ITERATIONS} iterations ({new_active.sum()} active)")
+    run = iterate_active_set(
+        scene.name, lambda act: system.matrix_and_rhs(np.where(act, k_all, 0.0), g0),
+        lambda u: g0 + u[system.dz1] - u[system.dz2], active, x, system.B, rebuild_fraction,
+        isinstance(initial_active, str) and initial_active == "hertz", seconds,
+        hint=f"; try a finer mesh or a smaller penalty (kappa = {kappa:g})")
+    x, gap, active = run.x, run.gap, run.active
     u1 = x[: system.n1].reshape(-1, 3)
     u2 = x[system.n1 :].reshape(-1, 3)
     symmetry_factor = 4.0 if mesh.quarter else 1.0
@@ -365,5 +425,5 @@ def solve_contact(scene: Scene, mesh: BlockMesh, approach: float | None = None,
     top_reaction = -symmetry_factor * float(reaction[3 * mesh.top + 2].sum())
     seconds["solve"] = time.perf_counter() - t0
     return ContactSolution(u1, u2, gap, np.where(active, penalty * -gap, 0.0), active, force,
-                           top_reaction, approach, penalty, system.n, iteration, cg_iterations,
-                           setups, seconds)
+                           top_reaction, approach, penalty, system.n, run.iterations,
+                           run.cg_iterations, run.amg_setups, seconds)
