@@ -180,16 +180,20 @@ class Comparison:
         becomes None."""
         row = asdict(self)
         del row["axis_stress"], row["nodal_stress"]
-        return _nan_to_none(row)
+        return nan_to_none(row)
 
 
-def _nan_to_none(value):
+def nan_to_none(value):
+    """A report row for strict JSON: NaN as None, numpy scalars as Python numbers,
+    through dicts, lists and tuples."""
     if isinstance(value, dict):
-        return {k: _nan_to_none(v) for k, v in value.items()}
+        return {k: nan_to_none(v) for k, v in value.items()}
     if isinstance(value, list | tuple):
-        return [_nan_to_none(v) for v in value]
-    if isinstance(value, float) and math.isnan(value):
-        return None
+        return [nan_to_none(v) for v in value]
+    if isinstance(value, float | np.floating):
+        return None if math.isnan(value) else float(value)
+    if isinstance(value, np.integer):
+        return int(value)
     return value
 
 

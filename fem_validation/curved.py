@@ -58,7 +58,7 @@ import numpy as np
 from scipy import sparse
 
 from . import memory
-from .compare import active_edge_points, edge_ellipse, fit_ellipse, moment_ellipse
+from .compare import active_edge_points, edge_ellipse, fit_ellipse, moment_ellipse, nan_to_none
 from .contact_search import gap_operator, project
 from .curved_mesh import (
     DEFAULT_CURVED_LEVEL,
@@ -300,19 +300,7 @@ class CurvedComparison:
     def to_dict(self) -> dict:
         """The curved.json row (NaN as None; a_over_r spelled a_over_R, as issue 9 asks)."""
         row = {k.replace("a_over_r", "a_over_R"): v for k, v in asdict(self).items()}
-        return _nan_to_none(row)
-
-
-def _nan_to_none(value):
-    if isinstance(value, dict):
-        return {k: _nan_to_none(v) for k, v in value.items()}
-    if isinstance(value, list | tuple):
-        return [_nan_to_none(v) for v in value]
-    if isinstance(value, float | np.floating):
-        return None if math.isnan(value) else float(value)
-    if isinstance(value, np.integer):
-        return int(value)
-    return value
+        return nan_to_none(row)
 
 
 def arc_positions(xyz: np.ndarray, radius: float) -> np.ndarray:
