@@ -229,6 +229,42 @@ cube_root(double m, double j)
 
 /* -------------------------------------------- the exact scalar geometry */
 
+/* The relative curvature sums and differences of eq. (1)-(2) multiplied by
+ * Pi = |r1x r1y r2x r2y|, so that one division (by Pi, where a true
+ * curvature is needed) replaces eight:
+ *
+ *     Sx Pi = (r1x + r2x) r1y r2y,   Sy Pi = (r1y + r2y) r1x r2x,
+ *     g1 Pi = (r1y - r1x) r2x r2y,   g2 Pi = (r2y - r2x) r1x r1y,
+ *
+ * each times the sign of r1x r1y r2x r2y.  A pair sum of a concave and a
+ * convex radius and a difference of radii of one sign are single roundings
+ * of exact differences: no cancellation, however closely the surfaces
+ * conform.  An infinite radius (a plane, a cylinder's axis) counts as 1 in
+ * the products and 0 in the sums.  Swapping the bodies gives the same bits.
+ * For radii within 2^+-RADIUS_RANGE nothing overflows or underflows. */
+#define RADIUS_RANGE 240
+
+static inline void
+curvature_products(double r1x, double r1y, double r2x, double r2y, double *sx, double *sy,
+                   double *g1, double *g2, double *pabs)
+{
+    double f1x = fabs(r1x) == INFINITY ? 0.0 : r1x, f1y = fabs(r1y) == INFINITY ? 0.0 : r1y;
+    double f2x = fabs(r2x) == INFINITY ? 0.0 : r2x, f2y = fabs(r2y) == INFINITY ? 0.0 : r2y;
+    double u1x = f1x == 0.0 ? 1.0 : r1x, u1y = f1y == 0.0 ? 1.0 : r1y;
+    double u2x = f2x == 0.0 ? 1.0 : r2x, u2y = f2y == 0.0 ? 1.0 : r2y;
+    double q1 = u1x * u1y, q2 = u2x * u2y, pi = q1 * q2;
+    double sign = pi < 0.0 ? -1.0 : 1.0;
+    double nsx = (f1x == 0.0 ? 0.0 : u2x) + (f2x == 0.0 ? 0.0 : u1x);
+    double nsy = (f1y == 0.0 ? 0.0 : u2y) + (f2y == 0.0 ? 0.0 : u1y);
+    double ng1 = (f1x == 0.0 ? 0.0 : u1y) - (f1y == 0.0 ? 0.0 : u1x);
+    double ng2 = (f2x == 0.0 ? 0.0 : u2y) - (f2y == 0.0 ? 0.0 : u2x);
+    *sx = sign * nsx * (u1y * u2y);
+    *sy = sign * nsy * (u1x * u2x);
+    *g1 = sign * ng1 * q2;
+    *g2 = sign * ng2 * q1;
+    *pabs = fabs(pi);
+}
+
 /* 1/ra + 1/rb, a concave-convex pair without cancellation. */
 static inline double
 pair_sum(double ra, double rb)
@@ -255,6 +291,20 @@ pair_difference(double rx, double ry)
     return 1.0 / rx - 1.0 / ry;
 }
 
+/* E* = E_lo / (c_lo + c_hi E_lo / E_hi) with E_lo <= E_hi, c = 1 - nu^2, as
+ * em 2^ee (E_lo = em 2^ee): one division, for moduli in [2^-900, 2^1000]
+ * (where no product below leaves the normal range).  Symmetric in the bodies. */
+static inline double
+modulus_mantissa(double e1, double nu1, double e2, double nu2, double *ee)
+{
+    double c1 = (1.0 - nu1) * (1.0 + nu1), c2 = (1.0 - nu2) * (1.0 + nu2);
+    double swap = e1 > e2 ? 1.0 : (e1 == e2 ? (c1 > c2 ? 1.0 : 0.0) : 0.0);
+    double elo = swap != 0.0 ? e2 : e1, ehi = swap != 0.0 ? e1 : e2;
+    double clo = swap != 0.0 ? c2 : c1, chi = swap != 0.0 ? c1 : c2;
+    double em = split_normal(elo, ee);
+    return em * ehi / (clo * ehi + chi * elo);
+}
+
 /* Validate the moduli and return E* as a scaled value:
  * 1/E* = (1 - nu1^2)/E1 + (1 - nu2^2)/E2, taken as E* = E_lo / (c_lo + c_hi
  * E_lo/E_hi) with E_lo <= E_hi (symmetric in the bodies; E_lo may be
@@ -278,18 +328,25 @@ reduced_modulus(double e1, double nu1, double e2, double nu2, hertz_scaled *e_st
     int swap = e1 > e2 || (e1 == e2 && c1 > c2);
     double elo = swap ? e2 : e1, ehi = swap ? e1 : e2;
     double clo = swap ? c2 : c1, chi = swap ? c1 : c2;
-    hertz_scaled s = split(elo);
-    s.m /= clo + chi * (elo / ehi);
+    hertz_scaled s;
+    if (elo >= 0x1p-900 && ehi <= 0x1p1000) {
+        s.m = modulus_mantissa(e1, nu1, e2, nu2, &s.e); /* as in fast_geometry */
+    }
+    else {
+        s = split(elo);
+        s.m /= clo + chi * (elo / ehi);
+    }
     *e_star = s;
     return HERTZ_OK;
 }
 
-/* Principal relative curvatures rho_x >= rho_y (as rx 2^e, ry 2^e), their
- * sum (rs 2^e) and the major-axis angle of one geometry, for any input.
- * HERTZ_OK or an error code; rx, ry are set for the contact errors. */
+/* Principal relative curvatures rho_x >= rho_y (as rx 2^e / pabs, ry 2^e /
+ * pabs), their sum (rs 2^rse) and the major-axis angle of one geometry, for
+ * any input.  HERTZ_OK or an error code; rx, ry are set for the contact
+ * errors. */
 static int
 curvatures(const double r[4], double angle, double *rx, double *ry, double *rs,
-           double *e, double *theta, int with_theta)
+           double *rse, double *e, double *pabs, double *theta, int with_theta)
 {
     static const int names[4] = {HERTZ_R1X, HERTZ_R1Y, HERTZ_R2X, HERTZ_R2Y};
     double radius[4];
@@ -311,12 +368,26 @@ curvatures(const double r[4], double angle, double *rx, double *ry, double *rs,
      * that no curvature overflows; a radius that then overflows is flat to
      * within 2^-1023 of the others. */
     int shift = scale ? lo : 0;
+    int products = 1;
     for (int k = 0; k < 4; ++k) {
         radius[k] = shift ? scale2(r[k], -shift) : r[k];
+        double a = fabs(radius[k]);
+        products &= a == INFINITY || (a >= 0x1p-240 && a <= 0x1p240);
     }
-    double sx = pair_sum(radius[0], radius[2]), sy = pair_sum(radius[1], radius[3]);
-    double g1 = pair_difference(radius[0], radius[1]);
-    double g2 = pair_difference(radius[2], radius[3]);
+    double sx, sy, g1, g2, sum = 0.0;
+    *pabs = 1.0;
+    if (products) {
+        /* as in fast_geometry: the same bits */
+        curvature_products(radius[0], radius[1], radius[2], radius[3], &sx, &sy, &g1, &g2,
+                           pabs);
+        sum = (sx + sy) / *pabs;
+    }
+    else {
+        sx = pair_sum(radius[0], radius[2]);
+        sy = pair_sum(radius[1], radius[3]);
+        g1 = pair_difference(radius[0], radius[1]);
+        g2 = pair_difference(radius[2], radius[3]);
+    }
     /* Normalise so that the largest of them lies in [1, 2): products below
      * cannot overflow, and a subnormal determinant means alpha > 1e307. */
     double big = fmax(fmax(fabs(sx), fabs(sy)), fmax(fabs(g1), fabs(g2)));
@@ -373,23 +444,28 @@ curvatures(const double r[4], double angle, double *rx, double *ry, double *rs,
     if (!(rho_y >= DBL_MIN) || !(rho_x / rho_y <= DBL_MAX)) {
         return HERTZ_LIMIT;
     }
-    *rs = sx + sy;
+    *rs = products ? sum : sx + sy;
+    *rse = products ? -shift : t - shift;
     *theta = th;
     return HERTZ_OK;
 }
 
 /* ------------------------------------------------------ the block stages */
 
-/* What stage 1 leaves per element of a block (structure of arrays). */
+/* What stage 1 leaves per element of a block (structure of arrays): alpha;
+ * the sum of the relative curvatures, rs 2^rse; E* = esm 2^ese; rho_x, rho_y
+ * as rx 2^ce / pabs and ry 2^ce / pabs; other = 1 for elements left to the
+ * scalar code. */
 typedef struct {
-    double alpha[HERTZ_BLOCK], rs[HERTZ_BLOCK], ce[HERTZ_BLOCK];
-    double esm[HERTZ_BLOCK], ese[HERTZ_BLOCK], rx[HERTZ_BLOCK], ry[HERTZ_BLOCK];
-    double other[HERTZ_BLOCK];
+    double alpha[HERTZ_BLOCK], rs[HERTZ_BLOCK], rse[HERTZ_BLOCK], ce[HERTZ_BLOCK];
+    double pabs[HERTZ_BLOCK], esm[HERTZ_BLOCK], ese[HERTZ_BLOCK], rx[HERTZ_BLOCK];
+    double ry[HERTZ_BLOCK], other[HERTZ_BLOCK];
 } stage1;
 
-/* Stage 1, the common case: finite radii within 2^+-300 (or inf), moduli
- * within 2^+-1000, |angle| <= FAST_ANGLE, a valid contact.  The same
- * formulas as curvatures() and reduced_modulus(); `other` flags the rest. */
+/* Stage 1, the common case: finite radii within 2^+-RADIUS_RANGE (or inf),
+ * moduli within [2^-900, 2^1000], |angle| <= FAST_ANGLE, a valid contact.
+ * The same formulas as curvatures() and reduced_modulus(); `other` flags the
+ * rest.  Four divisions an element: rs, alpha, rho_y = det/rho_x, E*. */
 HERTZ_MULTIVERSION static void
 fast_geometry(ptrdiff_t n, const double *const in[HERTZ_NGEOMETRY], stage1 *restrict s)
 {
@@ -398,7 +474,10 @@ fast_geometry(ptrdiff_t n, const double *const in[HERTZ_NGEOMETRY], stage1 *rest
     const double *restrict ANGLE = in[HERTZ_ANGLE];
     const double *restrict E1 = in[HERTZ_E1], *restrict NU1 = in[HERTZ_NU1];
     const double *restrict E2 = in[HERTZ_E2], *restrict NU2 = in[HERTZ_NU2];
-    const double lo = 0x1p-300, hi = 0x1p300;
+    const double lo = 0x1p-240, hi = 0x1p240;
+#if RADIUS_RANGE != 240
+#error "lo and hi are 2^-+RADIUS_RANGE"
+#endif
     for (ptrdiff_t i = 0; i < n; ++i) {
         double r1x = R1X[i], r1y = R1Y[i], r2x = R2X[i], r2y = R2Y[i], angle = ANGLE[i];
         double e1 = E1[i], nu1 = NU1[i], e2 = E2[i], nu2 = NU2[i];
@@ -417,8 +496,8 @@ fast_geometry(ptrdiff_t n, const double *const in[HERTZ_NGEOMETRY], stage1 *rest
         bad = a >= lo ? bad : 1.0;
         bad = a <= hi ? bad : (a == INFINITY ? bad : 1.0);
         bad = fabs(angle) <= FAST_ANGLE ? bad : 1.0;
-        bad = e1 >= 0x1p-1000 ? (e1 <= 0x1p1000 ? bad : 1.0) : 1.0;
-        bad = e2 >= 0x1p-1000 ? (e2 <= 0x1p1000 ? bad : 1.0) : 1.0;
+        bad = e1 >= 0x1p-900 ? (e1 <= 0x1p1000 ? bad : 1.0) : 1.0;
+        bad = e2 >= 0x1p-900 ? (e2 <= 0x1p1000 ? bad : 1.0) : 1.0;
         bad = nu1 > -1.0 ? (nu1 <= 0.5 ? bad : 1.0) : 1.0;
         bad = nu2 > -1.0 ? (nu2 <= 0.5 ? bad : 1.0) : 1.0;
         /* harmless stand-ins where bad (the element is redone by the scalar code) */
@@ -431,12 +510,9 @@ fast_geometry(ptrdiff_t n, const double *const in[HERTZ_NGEOMETRY], stage1 *rest
         e2 = bad == 0.0 ? e2 : 1.0;
         nu1 = bad == 0.0 ? nu1 : 0.0;
         nu2 = bad == 0.0 ? nu2 : 0.0;
-        double px = r1x * r2x, py = r1y * r2y, q1 = r1x * r1y, q2 = r2x * r2y;
-        double k1x = 1.0 / r1x, k1y = 1.0 / r1y, k2x = 1.0 / r2x, k2y = 1.0 / r2y;
-        double sx = px < 0.0 ? (px > -INFINITY ? (r1x + r2x) / px : k1x + k2x) : k1x + k2x;
-        double sy = py < 0.0 ? (py > -INFINITY ? (r1y + r2y) / py : k1y + k2y) : k1y + k2y;
-        double g1 = q1 > 0.0 ? (q1 < INFINITY ? (r1y - r1x) / q1 : k1x - k1y) : k1x - k1y;
-        double g2 = q2 > 0.0 ? (q2 < INFINITY ? (r2y - r2x) / q2 : k2x - k2y) : k2x - k2y;
+        double sx, sy, g1, g2, pabs;
+        curvature_products(r1x, r1y, r2x, r2y, &sx, &sy, &g1, &g2, &pabs);
+        double rs = (sx + sy) / pabs;
         double big = fabs(sx) > fabs(sy) ? fabs(sx) : fabs(sy);
         big = fabs(g1) > big ? fabs(g1) : big;
         big = fabs(g2) > big ? fabs(g2) : big;
@@ -465,17 +541,14 @@ fast_geometry(ptrdiff_t n, const double *const in[HERTZ_NGEOMETRY], stage1 *rest
         bad = rx / ry <= DBL_MAX ? bad : 1.0;
         s->other[i] = bad;
         s->alpha[i] = bad == 0.0 ? rx / ry : 1.0;
-        s->rs[i] = bad == 0.0 ? sx + sy : 1.0;
+        s->rs[i] = bad == 0.0 ? rs : 1.0;
+        s->rse[i] = 0.0;
         s->ce[i] = t;
-        s->rx[i] = rx * pow2(t);
-        s->ry[i] = ry * pow2(t);
-        /* E* as in reduced_modulus */
-        double c1 = (1.0 - nu1) * (1.0 + nu1), c2 = (1.0 - nu2) * (1.0 + nu2);
-        double swap = e1 > e2 ? 1.0 : (e1 == e2 ? (c1 > c2 ? 1.0 : 0.0) : 0.0);
-        double elo = swap != 0.0 ? e2 : e1, ehi = swap != 0.0 ? e1 : e2;
-        double clo = swap != 0.0 ? c2 : c1, chi = swap != 0.0 ? c1 : c2;
-        double ee, em = split_normal(elo, &ee);
-        s->esm[i] = em / (clo + chi * (elo / ehi));
+        s->pabs[i] = pabs;
+        s->rx[i] = rx;
+        s->ry[i] = ry;
+        double ee;
+        s->esm[i] = modulus_mantissa(e1, nu1, e2, nu2, &ee);
         s->ese[i] = ee;
     }
 }
@@ -496,8 +569,9 @@ geometry_stage(ptrdiff_t n, const double *const in[HERTZ_NGEOMETRY], stage1 *s,
             continue;
         }
         double r[4] = {in[HERTZ_R1X][i], in[HERTZ_R1Y][i], in[HERTZ_R2X][i], in[HERTZ_R2Y][i]};
-        double rx = 0.0, ry = 0.0, rs = 1.0, e = 0.0, th = 0.0;
-        int code = curvatures(r, in[HERTZ_ANGLE][i], &rx, &ry, &rs, &e, &th, theta != NULL);
+        double rx = 0.0, ry = 0.0, rs = 1.0, rse = 0.0, e = 0.0, pabs = 1.0, th = 0.0;
+        int code = curvatures(r, in[HERTZ_ANGLE][i], &rx, &ry, &rs, &rse, &e, &pabs, &th,
+                              theta != NULL);
         if (theta) {
             theta[i] = th;
         }
@@ -509,17 +583,19 @@ geometry_stage(ptrdiff_t n, const double *const in[HERTZ_NGEOMETRY], stage1 *s,
             code = reduced_modulus(in[HERTZ_E1][i], in[HERTZ_NU1][i], in[HERTZ_E2][i],
                                    in[HERTZ_NU2][i], &es);
         }
-        s->rx[i] = scale2(rx, e);
-        s->ry[i] = scale2(ry, e);
+        s->rx[i] = rx;
+        s->ry[i] = ry;
+        s->ce[i] = e;
+        s->pabs[i] = pabs;
         if (code != HERTZ_OK) {
             *bad = i;
-            *rho_x = s->rx[i];
-            *rho_y = s->ry[i];
+            *rho_x = scale2(rx, e) / pabs;
+            *rho_y = scale2(ry, e) / pabs;
             return code;
         }
         s->alpha[i] = rx / ry;
         s->rs[i] = rs;
-        s->ce[i] = e;
+        s->rse[i] = rse;
         s->esm[i] = es.m;
         s->ese[i] = es.e;
     }
@@ -529,7 +605,7 @@ geometry_stage(ptrdiff_t n, const double *const in[HERTZ_NGEOMETRY], stage1 *s,
 /* Coefficients per element (stage 3): c = {lam, cb.m, cb.e, cd.m, cd.e,
  * cp.m, cp.e, cs.m, cs.e}, each an array of n. */
 HERTZ_MULTIVERSION static void
-coefficients_loop(ptrdiff_t n, const double *restrict rs, const double *restrict ce,
+coefficients_loop(ptrdiff_t n, const double *restrict rs, const double *restrict rse,
                   const double *restrict es_m, const double *restrict es_e,
                   const double *restrict lam, const double *restrict K,
                   const double *restrict E, double *restrict cl, double *restrict cbm,
@@ -539,7 +615,7 @@ coefficients_loop(ptrdiff_t n, const double *restrict rs, const double *restrict
 {
     for (ptrdiff_t i = 0; i < n; ++i) {
         double er, rho_m = split_normal(rs[i], &er);
-        er += ce[i];
+        er += rse[i];
         double half_e = 0.5 / E[i], esm = es_m[i], ese = es_e[i];
         cl[i] = lam[i];
         cbm[i] = 3.0 * E[i] / (PI * lam[i] * esm * rho_m);
@@ -557,7 +633,7 @@ static void
 coefficients_stage(ptrdiff_t n, const stage1 *s, const double *lam, const double *K,
                    const double *E, double *const c[HERTZ_NCOEFFICIENTS])
 {
-    coefficients_loop(n, s->rs, s->ce, s->esm, s->ese, lam, K, E, c[0], c[1], c[2], c[3], c[4],
+    coefficients_loop(n, s->rs, s->rse, s->esm, s->ese, lam, K, E, c[0], c[1], c[2], c[3], c[4],
                       c[5], c[6], c[7], c[8]);
 }
 
@@ -705,13 +781,19 @@ geometry_and_coefficients(ptrdiff_t n, const double *const in[HERTZ_NGEOMETRY],
     if (code != HERTZ_OK) {
         return code;
     }
-    hertz_ellipse_block(s.alpha, n, 1, lam, m, K, E);
+    hertz_ellipse_table(s.alpha, n, lam, K, E);
     coefficients_stage(n, &s, lam, K, E, c);
     if (g) {
+        /* m from the solver, which keeps its relative accuracy as alpha -> 1
+         * (1 - 1/lambda^2 would not); the rest as the outputs were made. */
+        double lam_solver[HERTZ_BLOCK];
+        hertz_ellipse_block(s.alpha, n, 1, lam_solver, m, NULL, NULL);
         /* g[k * n + i]: lambda, alpha, m, K, E, e_star, rho_x, rho_y, theta */
         for (ptrdiff_t i = 0; i < n; ++i) {
             double row[HERTZ_NFIELDS] = {lam[i], s.alpha[i], m[i], K[i], E[i],
-                                         scale2(s.esm[i], s.ese[i]), s.rx[i], s.ry[i],
+                                         scale2(s.esm[i], s.ese[i]),
+                                         scale2(s.rx[i], s.ce[i]) / s.pabs[i],
+                                         scale2(s.ry[i], s.ce[i]) / s.pabs[i],
                                          with_theta ? theta[i] : 0.0};
             for (int k = 0; k < HERTZ_NFIELDS; ++k) {
                 g[k * n + i] = row[k];
@@ -753,9 +835,10 @@ hertz_line_contact(const double in[8], double load, double out[5], double *rho_x
                    double *rho_y)
 {
     double rx = 0.0, ry = 0.0, rs, theta, e = 0.0;
-    int code = curvatures(in, 0.0, &rx, &ry, &rs, &e, &theta, 0);
-    *rho_x = scale2(rx, e);
-    *rho_y = scale2(ry, e);
+    double rse, pabs;
+    int code = curvatures(in, 0.0, &rx, &ry, &rs, &rse, &e, &pabs, &theta, 0);
+    *rho_x = scale2(rx, e) / pabs;
+    *rho_y = scale2(ry, e) / pabs;
     if (code == HERTZ_LINE) {
         code = HERTZ_OK;
     }
@@ -773,7 +856,7 @@ hertz_line_contact(const double in[8], double load, double out[5], double *rho_x
     if (!(load >= 0.0 && load <= DBL_MAX)) {
         return HERTZ_BAD_VALUE;
     }
-    hertz_scaled rho = split(rx);
+    hertz_scaled rho = split(rx / pabs); /* pabs within 2^+-960, rx about 1 */
     rho.e += e;
     out[2] = scale2(es.m, es.e);
     out[3] = scale2(rho.m, rho.e);

@@ -14,7 +14,7 @@
  * fused multiply-adds), so both give the same bits.  -DHERTZ_PLAIN builds
  * the plain version only (tests/test_kernel_builds.py compares them). */
 #if defined(__GNUC__) && defined(__x86_64__) && defined(__linux__) && !defined(HERTZ_PLAIN)
-#define HERTZ_MULTIVERSION __attribute__((target_clones("avx2", "default")))
+#define HERTZ_MULTIVERSION __attribute__((target_clones("arch=x86-64-v4", "avx2", "default")))
 #else
 #define HERTZ_MULTIVERSION
 #endif
@@ -36,6 +36,13 @@ ptrdiff_t hertz_ellipse_solve(const double *alpha, ptrdiff_t n, int iterations,
  * separately so that either can carry full relative precision. */
 void hertz_associate_integrals(ptrdiff_t n, const double *m, const double *p,
                                double *B, double *D, double *V);
+
+/* lambda, K, E for n contiguous alphas from the piecewise-polynomial table
+ * (hertz/_ellipse_table.c) where 1 <= alpha < 2^64, from the solver
+ * elsewhere.  Returns -1, or the index of the first alpha that is not a
+ * positive number. */
+ptrdiff_t hertz_ellipse_table(const double *alpha, ptrdiff_t n, double *lam, double *K,
+                              double *E);
 
 /* Whether the AVX2 start-only path is used; enable = 0 or 1 switches it off
  * or on (on only where the CPU has AVX2) first, enable < 0 only asks. */

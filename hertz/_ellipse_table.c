@@ -1,0 +1,166 @@
+/*
+ * The contact ellipse from a table (hertz/_ellipse_table.c): lambda(alpha),
+ * K and E at the root of alpha = B(m) / ((1 - m) D(m)) (hertz/_kernel.c,
+ * eq. (1)) for the contact kernel, without an iteration.
+ *
+ * For 1 <= alpha < 2^TABLE_BINADES the three functions are piecewise
+ * polynomials (hertz/_ellipse_table.h, written by
+ * tools/generate_ellipse_table.py from 50-digit mpmath roots): the piece is
+ * read from the bits of alpha (its binade and the next TABLE_SPLIT_BITS bits),
+ * the local variable z in [-1, 1) is exact, and each function is
+ *
+ *     c0_hi + (c0_lo + z (c1 + z (c2 + ... + z c_d))),
+ *
+ * within 1.0 x 2^-53 relative of the truth (the generator's check; the tests
+ * compare with tests/reference.py).  This costs a fraction of one evaluation of
+ * K and E, which is why hertz.contact uses it; hertz.ellipticity keeps the
+ * seed's Bailey iteration (hertz/_kernel.c), whose own accuracy is 3.7e-16.
+ *
+ * alpha = 1 gives lambda = 1 and K = E = pi/2 exactly; lambda is never below
+ * 1.  alpha >= 2^TABLE_BINADES (and anything not in [1, inf)) goes to the
+ * solver, whose closed form covers alpha >= 2^64.
+ */
+#include <stdint.h>
+#include <string.h>
+
+#include "_coefficients.h"
+#include "_ellipse_table.h"
+#include "_kernel.h"
+
+#if TABLE_DEGREE != 8 || TABLE_STRIDE != 10
+#error "the table is evaluated as a degree-8 polynomial, 30 doubles a piece"
+#endif
+
+/* Horner in z on a stored row, then the two-part leading coefficient. */
+#define TABLE_TOP 0x1p64 /* 2^TABLE_BINADES */
+#define Z_SCALE ((double)(2 << TABLE_SPLIT_BITS))
+#if TABLE_BINADES != 64
+#error "TABLE_TOP is 2^TABLE_BINADES"
+#endif
+
+static inline double
+table_poly(const double *c, double z)
+{
+    double r = c[9];
+    r = r * z + c[8];
+    r = r * z + c[7];
+    r = r * z + c[6];
+    r = r * z + c[5];
+    r = r * z + c[4];
+    r = r * z + c[3];
+    r = r * z + c[2];
+    return c[0] + (c[1] + z * r);
+}
+
+/* lambda, K, E of one alpha in [1, 2^TABLE_BINADES). */
+static inline void
+table_one(double a, double *lam, double *K, double *E)
+{
+    uint64_t bits;
+    memcpy(&bits, &a, sizeof bits);
+    /* piece e 2^S + k: the exponent and the top S bits of the mantissa */
+    uint64_t piece = (bits >> (52 - TABLE_SPLIT_BITS)) - ((uint64_t)1023 << TABLE_SPLIT_BITS);
+    uint64_t fbits = (bits & 0x000FFFFFFFFFFFFFull) | 0x3FF0000000000000ull;
+    double f;
+    memcpy(&f, &fbits, sizeof f);
+    double k = (double)(piece & ((1u << TABLE_SPLIT_BITS) - 1));
+    double z = Z_SCALE * f - (Z_SCALE + 2.0 * k + 1.0);
+    const double *row = &ELLIPSE_TABLE[piece][0][0];
+    double l = table_poly(row, z);
+    *lam = a == 1.0 ? 1.0 : (l > 1.0 ? l : 1.0);
+    *K = a == 1.0 ? PI_2 : table_poly(row + TABLE_STRIDE, z);
+    *E = a == 1.0 ? PI_2 : table_poly(row + 2 * TABLE_STRIDE, z);
+}
+
+#if defined(__GNUC__) && defined(__x86_64__) && defined(__linux__) && !defined(HERTZ_PLAIN)
+#include <immintrin.h>
+#define HAVE_AVX2_TABLE 1
+
+__attribute__((target("avx2"))) static inline __m256d
+poly_avx2(const double *row, __m256i at, __m256d z)
+{
+    __m256d r = _mm256_i64gather_pd(row + 9, at, 8);
+    for (int j = 8; j >= 2; --j) {
+        r = _mm256_add_pd(_mm256_mul_pd(r, z), _mm256_i64gather_pd(row + j, at, 8));
+    }
+    __m256d c1 = _mm256_i64gather_pd(row + 1, at, 8);
+    __m256d c0 = _mm256_i64gather_pd(row, at, 8);
+    return _mm256_add_pd(c0, _mm256_add_pd(c1, _mm256_mul_pd(z, r)));
+}
+
+/* table_one four at a time, the same operations in the same order (no FMA),
+ * so the same bits.  Elements outside [1, 2^64) are left to the caller. */
+__attribute__((target("avx2"))) static void
+table_avx2(ptrdiff_t n, const double *alpha, double *lam, double *K, double *E)
+{
+    const __m256d one = _mm256_set1_pd(1.0), top = _mm256_set1_pd(TABLE_TOP);
+    const __m256d pi_2 = _mm256_set1_pd(PI_2), scale = _mm256_set1_pd(Z_SCALE);
+    const __m256d two = _mm256_set1_pd(2.0), two52 = _mm256_set1_pd(0x1p52);
+    const __m256i mantissa = _mm256_set1_epi64x(0x000FFFFFFFFFFFFFll);
+    const __m256i exponent_one = _mm256_set1_epi64x(0x3FF0000000000000ll);
+    const __m256i bias = _mm256_set1_epi64x((long long)1023 << TABLE_SPLIT_BITS);
+    const __m256i low = _mm256_set1_epi64x((1 << TABLE_SPLIT_BITS) - 1);
+    const __m256i two52_bits = _mm256_set1_epi64x(0x4330000000000000ll);
+    const double *table = &ELLIPSE_TABLE[0][0][0];
+    ptrdiff_t i = 0;
+    for (; i + 4 <= n; i += 4) {
+        __m256d a = _mm256_loadu_pd(alpha + i);
+        __m256d ok = _mm256_and_pd(_mm256_cmp_pd(a, one, _CMP_GE_OQ),
+                                   _mm256_cmp_pd(a, top, _CMP_LT_OQ));
+        a = _mm256_blendv_pd(one, a, ok);
+        __m256i bits = _mm256_castpd_si256(a);
+        __m256i piece = _mm256_sub_epi64(_mm256_srli_epi64(bits, 52 - TABLE_SPLIT_BITS), bias);
+        __m256d k = _mm256_sub_pd(
+            _mm256_castsi256_pd(_mm256_or_si256(_mm256_and_si256(piece, low), two52_bits)),
+            two52);
+        __m256d f = _mm256_castsi256_pd(
+            _mm256_or_si256(_mm256_and_si256(bits, mantissa), exponent_one));
+        __m256d z = _mm256_sub_pd(_mm256_mul_pd(scale, f),
+                                  _mm256_add_pd(_mm256_add_pd(scale, _mm256_mul_pd(two, k)),
+                                                one));
+        __m256i at = _mm256_sub_epi64(_mm256_slli_epi64(piece, 5), _mm256_slli_epi64(piece, 1));
+        __m256d l = poly_avx2(table, at, z);
+        __m256d kk = poly_avx2(table + TABLE_STRIDE, at, z);
+        __m256d ee = poly_avx2(table + 2 * TABLE_STRIDE, at, z);
+        __m256d is_one = _mm256_cmp_pd(a, one, _CMP_EQ_OQ);
+        l = _mm256_blendv_pd(one, l, _mm256_cmp_pd(l, one, _CMP_GT_OQ));
+        _mm256_storeu_pd(lam + i, _mm256_blendv_pd(l, one, is_one));
+        _mm256_storeu_pd(K + i, _mm256_blendv_pd(kk, pi_2, is_one));
+        _mm256_storeu_pd(E + i, _mm256_blendv_pd(ee, pi_2, is_one));
+    }
+    for (; i < n; ++i) {
+        double a = alpha[i] >= 1.0 && alpha[i] < TABLE_TOP ? alpha[i] : 1.0;
+        table_one(a, lam + i, K + i, E + i);
+    }
+}
+#else
+#define HAVE_AVX2_TABLE 0
+#endif
+
+ptrdiff_t
+hertz_ellipse_table(const double *alpha, ptrdiff_t n, double *lam, double *K, double *E)
+{
+#if HAVE_AVX2_TABLE
+    if (hertz_simd(-1)) {
+        table_avx2(n, alpha, lam, K, E);
+    }
+    else
+#endif
+    {
+        for (ptrdiff_t i = 0; i < n; ++i) {
+            if (alpha[i] >= 1.0 && alpha[i] < TABLE_TOP) {
+                table_one(alpha[i], lam + i, K + i, E + i);
+            }
+        }
+    }
+    for (ptrdiff_t i = 0; i < n; ++i) {
+        if (!(alpha[i] >= 1.0 && alpha[i] < TABLE_TOP)) {
+            double m;
+            ptrdiff_t bad = hertz_ellipse_block(alpha + i, 1, 1, lam + i, &m, K + i, E + i);
+            if (bad >= 0) {
+                return i;
+            }
+        }
+    }
+    return -1;
+}
