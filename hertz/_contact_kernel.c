@@ -125,8 +125,20 @@ exponent_of(double x)
 
 /* ------------------------------------------------ double-double arithmetic */
 
-/* Dekker (1971), without fused multiply-add: a b = p + err exactly. */
-static inline void
+/* Inlined into each caller, so that a constant `fused` argument selects the
+ * code at compile time. */
+#if defined(__GNUC__)
+#define HERTZ_INLINE static inline __attribute__((always_inline))
+#elif defined(_MSC_VER)
+#define HERTZ_INLINE static __forceinline
+#else
+#define HERTZ_INLINE static inline
+#endif
+
+/* a b = p + err exactly: with a fused multiply-add (fused = 1, only where the
+ * processor has one, see hertz_fma_available) or by Dekker's splitting
+ * (1971).  Both are exact, so both give the same bits. */
+HERTZ_INLINE void
 veltkamp(double a, double *hi, double *lo)
 {
     double t = 134217729.0 * a; /* 2^27 + 1 */
@@ -134,21 +146,27 @@ veltkamp(double a, double *hi, double *lo)
     *lo = a - *hi;
 }
 
-static inline double
-two_prod(double a, double b, double *err)
+HERTZ_INLINE double
+two_prod(double a, double b, double *err, const int fused)
 {
-    double p = a * b, ah, al, bh, bl;
-    veltkamp(a, &ah, &al);
-    veltkamp(b, &bh, &bl);
-    *err = ((ah * bh - p) + ah * bl + al * bh) + al * bl;
+    double p = a * b;
+    if (fused) {
+        *err = fma(a, b, -p);
+    }
+    else {
+        double ah, al, bh, bl;
+        veltkamp(a, &ah, &al);
+        veltkamp(b, &bh, &bl);
+        *err = ((ah * bh - p) + ah * bl + al * bh) + al * bl;
+    }
     return p;
 }
 
 /* (h + l)(x + y) as a double-double. */
-static inline double
-dd_mul(double h, double l, double x, double y, double *lo)
+HERTZ_INLINE double
+dd_mul(double h, double l, double x, double y, double *lo, const int fused)
 {
-    double e, p = two_prod(h, x, &e);
+    double e, p = two_prod(h, x, &e, fused);
     e += h * y + l * x;
     double s = p + e;
     *lo = e - (s - p);
@@ -156,18 +174,18 @@ dd_mul(double h, double l, double x, double y, double *lo)
 }
 
 /* (h + l) / c, rounded once. */
-static inline double
-dd_div(double h, double l, double c)
+HERTZ_INLINE double
+dd_div(double h, double l, double c, const int fused)
 {
-    double q = h / c, e, p = two_prod(q, c, &e);
+    double q = h / c, e, p = two_prod(q, c, &e, fused);
     return q + (((h - p) - e) + l) / c;
 }
 
 /* c (h + l), rounded once. */
-static inline double
-dd_scale(double c, double h, double l)
+HERTZ_INLINE double
+dd_scale(double c, double h, double l, const int fused)
 {
-    double e, p = two_prod(c, h, &e);
+    double e, p = two_prod(c, h, &e, fused);
     return p + (e + c * l);
 }
 
@@ -212,19 +230,22 @@ sin_cos(double x, double *sin_x, double *cos_x)
     *cos_x = j >= 1.0 ? -cv : (j <= -2.0 ? -cv : cv);
 }
 
-/* x^(1/3) for 1 <= x < 8 to about 1e-10: a degree-4 least-squares polynomial
- * for the mantissa m in [1, 2) (fitted at Chebyshev nodes), times 2^(j/3),
- * then one Newton step; the caller's double-double step completes it. */
+/* x^(-1/3) for x = m 2^j, 1 <= m < 2, j in {0, 1, 2}, to a few ulp without a
+ * division: a degree-4 least-squares polynomial for m^(-1/3) (fitted at 64
+ * Chebyshev nodes, error 3.9e-5) times 2^(-j/3), then two Newton steps
+ * r <- r (4 - x r^3)/3 (error 3e-9, then rounding).  The caller's
+ * double-double step completes the cube root. */
 static inline double
-cube_root(double m, double j)
+inverse_cube_root(double m, double j)
 {
-    const double C0 = 1.1447129219983228, C1 = 0.2542825412449247,
-                 C2 = -0.05643544389416345, C3 = 0.02247174566566939,
-                 C4 = -0.010274592492448192;
+    const double C0 = 0.8735853831770144, C1 = -0.1938092862297736,
+                 C2 = 0.08593193062435243, C3 = -0.049690080091560035,
+                 C4 = 0.028427719739719047;
     double x = m * (j >= 2.0 ? 4.0 : (j >= 1.0 ? 2.0 : 1.0)), t = m - 1.5;
-    double y = (C0 + t * (C1 + t * (C2 + t * (C3 + t * C4))))
-               * (j >= 2.0 ? 1.5874010519681994 : (j >= 1.0 ? 1.2599210498948732 : 1.0));
-    return y - (y * y * y - x) / (3.0 * y * y);
+    double r = (C0 + t * (C1 + t * (C2 + t * (C3 + t * C4))))
+               * (j >= 2.0 ? 0.6299605249474366 : (j >= 1.0 ? 0.7937005259840998 : 1.0));
+    r = r * (4.0 - x * (r * r * r)) * (1.0 / 3.0);
+    return r * (4.0 - x * (r * r * r)) * (1.0 / 3.0);
 }
 
 /* -------------------------------------------- the exact scalar geometry */
@@ -465,9 +486,13 @@ typedef struct {
 /* Stage 1, the common case: finite radii within 2^+-RADIUS_RANGE (or inf),
  * moduli within [2^-900, 2^1000], |angle| <= FAST_ANGLE, a valid contact.
  * The same formulas as curvatures() and reduced_modulus(); `other` flags the
- * rest.  Four divisions an element: rs, alpha, rho_y = det/rho_x, E*. */
-HERTZ_MULTIVERSION static void
-fast_geometry(ptrdiff_t n, const double *const in[HERTZ_NGEOMETRY], stage1 *restrict s)
+ * rest.  Four divisions an element: rs, alpha, rho_y = det/rho_x, E*.
+ * aligned = 1 for a block whose angles are all zero: the principal planes
+ * coincide, rho_x and rho_y are the pair sums (no sine, no square root, no
+ * det/rho_x), with the bits the general code gives at angle 0. */
+HERTZ_INLINE void
+fast_geometry_body(ptrdiff_t n, const double *const in[HERTZ_NGEOMETRY], stage1 *restrict s,
+                   const int aligned)
 {
     const double *restrict R1X = in[HERTZ_R1X], *restrict R1Y = in[HERTZ_R1Y];
     const double *restrict R2X = in[HERTZ_R2X], *restrict R2Y = in[HERTZ_R2Y];
@@ -514,30 +539,39 @@ fast_geometry(ptrdiff_t n, const double *const in[HERTZ_NGEOMETRY], stage1 *rest
         curvature_products(r1x, r1y, r2x, r2y, &sx, &sy, &g1, &g2, &pabs);
         double rs = (sx + sy) / pabs;
         double big = fabs(sx) > fabs(sy) ? fabs(sx) : fabs(sy);
-        big = fabs(g1) > big ? fabs(g1) : big;
-        big = fabs(g2) > big ? fabs(g2) : big;
+        if (!aligned) {
+            big = fabs(g1) > big ? fabs(g1) : big;
+            big = fabs(g2) > big ? fabs(g2) : big;
+        }
         bad = big > 0.0 ? bad : 1.0;
         double t;
         split_normal(big > 0.0 ? big : 1.0, &t);
         double f = pow2(-t);
         sx *= f;
         sy *= f;
-        g1 *= f;
-        g2 *= f;
-        double sn, cs;
-        sin_cos(angle, &sn, &cs);
-        double ss = sn * sn, cc = cs * cs, gg = g1 * g2;
-        double trace = sx + sy, det = sx * sy + gg * ss;                        /* (1) */
-        double dg = gg >= 0.0 ? g1 - g2 : g1 + g2;
-        double d = sqrt(dg * dg + 4.0 * fabs(gg) * (gg >= 0.0 ? cc : ss));      /* (2) */
-        double rx = 0.5 * (trace + d);
-        double ry = d <= 0.5 * trace ? 0.5 * (trace - d) : det / rx;
-        ry = ry < rx ? ry : rx;
-        rx = sn == 0.0 ? (sx > sy ? sx : sy) : rx; /* aligned principal planes */
-        ry = sn == 0.0 ? (sx > sy ? sy : sx) : ry;
+        double rx, ry;
+        if (aligned) {
+            rx = sx > sy ? sx : sy;
+            ry = sx > sy ? sy : sx;
+        }
+        else {
+            g1 *= f;
+            g2 *= f;
+            double sn, cs;
+            sin_cos(angle, &sn, &cs);
+            double ss = sn * sn, cc = cs * cs, gg = g1 * g2;
+            double trace = sx + sy, det = sx * sy + gg * ss;                    /* (1) */
+            double dg = gg >= 0.0 ? g1 - g2 : g1 + g2;
+            double d = sqrt(dg * dg + 4.0 * fabs(gg) * (gg >= 0.0 ? cc : ss));  /* (2) */
+            rx = 0.5 * (trace + d);
+            ry = d <= 0.5 * trace ? 0.5 * (trace - d) : det / rx;
+            ry = ry < rx ? ry : rx;
+            rx = sn == 0.0 ? (sx > sy ? sx : sy) : rx; /* aligned principal planes */
+            ry = sn == 0.0 ? (sx > sy ? sy : sx) : ry;
+            bad = sn == 0.0 ? bad : (det >= DBL_MIN ? bad : 1.0);
+        }
         bad = rx > 0.0 ? bad : 1.0;
         bad = ry >= DBL_MIN ? bad : 1.0;
-        bad = sn == 0.0 ? bad : (det >= DBL_MIN ? bad : 1.0);
         bad = rx / ry <= DBL_MAX ? bad : 1.0;
         s->other[i] = bad;
         s->alpha[i] = bad == 0.0 ? rx / ry : 1.0;
@@ -553,6 +587,19 @@ fast_geometry(ptrdiff_t n, const double *const in[HERTZ_NGEOMETRY], stage1 *rest
     }
 }
 
+HERTZ_MULTIVERSION static void
+fast_geometry(ptrdiff_t n, const double *const in[HERTZ_NGEOMETRY], stage1 *restrict s)
+{
+    fast_geometry_body(n, in, s, 0);
+}
+
+HERTZ_MULTIVERSION static void
+fast_geometry_aligned(ptrdiff_t n, const double *const in[HERTZ_NGEOMETRY],
+                      stage1 *restrict s)
+{
+    fast_geometry_body(n, in, s, 1);
+}
+
 /* Stage 1 for a block, with the scalar code for the flagged elements (and
  * for the major-axis angle when asked).  HERTZ_OK, or an error code with
  * *bad the element and its curvatures in *rho_x, *rho_y. */
@@ -560,7 +607,16 @@ static int
 geometry_stage(ptrdiff_t n, const double *const in[HERTZ_NGEOMETRY], stage1 *s,
                double *theta, ptrdiff_t *bad, double *rho_x, double *rho_y)
 {
-    fast_geometry(n, in, s);
+    double turned = 0.0;
+    for (ptrdiff_t i = 0; i < n; ++i) {
+        turned = in[HERTZ_ANGLE][i] == 0.0 ? turned : 1.0;
+    }
+    if (turned != 0.0) {
+        fast_geometry(n, in, s);
+    }
+    else {
+        fast_geometry_aligned(n, in, s);
+    }
     for (ptrdiff_t i = 0; i < n; ++i) {
         if (theta) {
             theta[i] = 0.0;
@@ -638,7 +694,15 @@ coefficients_stage(ptrdiff_t n, const stage1 *s, const double *lam, const double
 }
 
 /* Stage 4: the load-dependent outputs from the value v = vm 2^ve (vm in
- * [1, 2)); out = {a, b, load, p0, delta, stiffness}.  One loop per mode. */
+ * [1, 2)); out = {a, b, load, p0, delta, stiffness}.  One body per mode,
+ * instantiated three times (HERTZ_INLINE, constant flags):
+ *
+ *   fast (fast = 1): an output x 2^e is x * 2^e, exact while |e| <= 1000,
+ *     and the body returns 1 if any element of the block needs more;
+ *   exact (fast = 0): every output rounded once into any range (scale2);
+ *   fused = 1 only where the processor has a fused multiply-add.
+ *
+ * The three give the same bits wherever the fast one is used. */
 #define GIVEN_PARAMETERS                                                                \
     ptrdiff_t n, const double *restrict cl, const double *restrict cbm,                 \
         const double *restrict cbe, const double *restrict cdm, const double *restrict cde, \
@@ -647,15 +711,29 @@ coefficients_stage(ptrdiff_t n, const stage1 *s, const double *lam, const double
         const double *restrict v, double *restrict oa, double *restrict ob,                 \
         double *restrict oload, double *restrict op0, double *restrict odelta,             \
         double *restrict ostiff
+#define GIVEN_NAMES n, cl, cbm, cbe, cdm, cde, cpm, cpe, csm, cse, vm, ve, v, oa, ob, oload, \
+                    op0, odelta, ostiff
 
-HERTZ_MULTIVERSION static void
-given_load(GIVEN_PARAMETERS)
+/* x 2^e; in the fast variant, wide becomes 1 where |e| > 1000. */
+HERTZ_INLINE double
+place(double x, double e, double *wide, const int fast)
 {
+    if (!fast) {
+        return scale2(x, e);
+    }
+    *wide = fabs(e) <= 1000.0 ? *wide : 1.0;
+    return x * pow2(fabs(e) <= 1000.0 ? e : 0.0);
+}
+
+HERTZ_INLINE double
+given_load_body(GIVEN_PARAMETERS, const int fused, const int fast)
+{
+    double wide = 0.0;
     for (ptrdiff_t i = 0; i < n; ++i) {
-        /* b^3 = cb P = (xh + xl) 2^(3q): cube root, one Newton step in double-double */
-        double xl, xh = two_prod(cbm[i], vm[i], &xl);
+        /* b^3 = cb P = (xh + xl) 2^(3q) */
+        double xl, xh = two_prod(cbm[i], vm[i], &xl, fused);
         double xe, xm = split_normal(xh, &xe);
-        xl *= xm / xh; /* a power of two: exact */
+        xl *= pow2(-xe); /* xm / xh, exactly */
         double e = cbe[i] + ve[i] + xe;
         double q = (e * (1.0 / 3.0) + ROUND) - ROUND, j = e - 3.0 * q;
         q = j < 0.0 ? q - 1.0 : q;
@@ -663,25 +741,31 @@ given_load(GIVEN_PARAMETERS)
         double f = j >= 2.0 ? 4.0 : (j >= 1.0 ? 2.0 : 1.0);
         xh = xm * f;
         xl *= f;
-        double bh = cube_root(xm, j);
-        double sl, sh = two_prod(bh, bh, &sl), cl3, ch = dd_mul(sh, sl, bh, 0.0, &cl3);
-        double bl = ((xh - ch) - cl3 + xl) / (3.0 * sh);
-        double b2l, b2h = dd_mul(bh, bl, bh, bl, &b2l);
-        oa[i] = scale2(dd_scale(cl[i], bh, bl), q);
-        ob[i] = scale2(bh + bl, q);
+        /* b = bh + bl: bh = x r^2 with r = x^(-1/3), then one Newton step in
+         * double-double, bl = (x - bh^3) r^2 / 3 */
+        double r = inverse_cube_root(xm, j), r2 = r * r;
+        double bh = xh * r2;
+        double sl, sh = two_prod(bh, bh, &sl, fused), cl3, ch = two_prod(sh, bh, &cl3, fused);
+        cl3 += sl * bh;
+        double bl = (((xh - ch) - cl3) + xl) * (r2 * (1.0 / 3.0));
+        double b2l, b2h = dd_mul(bh, bl, bh, bl, &b2l, fused);
+        oa[i] = place(dd_scale(cl[i], bh, bl, fused), q, &wide, fast);
+        ob[i] = place(bh + bl, q, &wide, fast);
         oload[i] = v[i];
-        op0[i] = scale2(dd_scale(cpm[i], bh, bl), cpe[i] + q);
-        odelta[i] = scale2(dd_scale(cdm[i], b2h, b2l), cde[i] + 2.0 * q);
-        ostiff[i] = scale2(dd_scale(csm[i], bh, bl), cse[i] + q);
+        op0[i] = place(dd_scale(cpm[i], bh, bl, fused), cpe[i] + q, &wide, fast);
+        odelta[i] = place(dd_scale(cdm[i], b2h, b2l, fused), cde[i] + 2.0 * q, &wide, fast);
+        ostiff[i] = place(dd_scale(csm[i], bh, bl, fused), cse[i] + q, &wide, fast);
     }
+    return wide;
 }
 
-HERTZ_MULTIVERSION static void
-given_approach(GIVEN_PARAMETERS)
+HERTZ_INLINE double
+given_approach_body(GIVEN_PARAMETERS, const int fused, const int fast)
 {
+    double wide = 0.0;
     for (ptrdiff_t i = 0; i < n; ++i) {
         /* b^2 = t = delta / cd = (th + tl) 2^(2q); P = t b / cb */
-        double th = vm[i] / cdm[i], pe, pp = two_prod(th, cdm[i], &pe);
+        double th = vm[i] / cdm[i], pe, pp = two_prod(th, cdm[i], &pe, fused);
         double tl = ((vm[i] - pp) - pe) / cdm[i];
         double e = ve[i] - cde[i];
         double q = (e * 0.5 + ROUND) - ROUND, j = e - 2.0 * q;
@@ -691,36 +775,56 @@ given_approach(GIVEN_PARAMETERS)
         th *= f;
         tl *= f;
         double bh = sqrt(th);
-        double sl, sh = two_prod(bh, bh, &sl);
+        double sl, sh = two_prod(bh, bh, &sl, fused);
         double bl = ((th - sh) - sl + tl) / (2.0 * bh);
-        double ll, lh = dd_mul(th, tl, bh, bl, &ll);
-        oa[i] = scale2(dd_scale(cl[i], bh, bl), q);
-        ob[i] = scale2(bh + bl, q);
-        oload[i] = scale2(dd_div(lh, ll, cbm[i]), 3.0 * q - cbe[i]);
-        op0[i] = scale2(dd_scale(cpm[i], bh, bl), cpe[i] + q);
+        double ll, lh = dd_mul(th, tl, bh, bl, &ll, fused);
+        oa[i] = place(dd_scale(cl[i], bh, bl, fused), q, &wide, fast);
+        ob[i] = place(bh + bl, q, &wide, fast);
+        oload[i] = place(dd_div(lh, ll, cbm[i], fused), 3.0 * q - cbe[i], &wide, fast);
+        op0[i] = place(dd_scale(cpm[i], bh, bl, fused), cpe[i] + q, &wide, fast);
         odelta[i] = v[i];
-        ostiff[i] = scale2(dd_scale(csm[i], bh, bl), cse[i] + q);
+        ostiff[i] = place(dd_scale(csm[i], bh, bl, fused), cse[i] + q, &wide, fast);
     }
+    return wide;
 }
 
-HERTZ_MULTIVERSION static void
-given_p0(GIVEN_PARAMETERS)
+HERTZ_INLINE double
+given_p0_body(GIVEN_PARAMETERS, const int fused, const int fast)
 {
+    double wide = 0.0;
     for (ptrdiff_t i = 0; i < n; ++i) {
         /* b = p0 / cp; P = b^3 / cb */
-        double bh = vm[i] / cpm[i], pe, pp = two_prod(bh, cpm[i], &pe);
+        double bh = vm[i] / cpm[i], pe, pp = two_prod(bh, cpm[i], &pe, fused);
         double bl = ((vm[i] - pp) - pe) / cpm[i];
         double q = ve[i] - cpe[i];
-        double b2l, b2h = dd_mul(bh, bl, bh, bl, &b2l);
-        double ll, lh = dd_mul(b2h, b2l, bh, bl, &ll);
-        oa[i] = scale2(dd_scale(cl[i], bh, bl), q);
-        ob[i] = scale2(bh + bl, q);
-        oload[i] = scale2(dd_div(lh, ll, cbm[i]), 3.0 * q - cbe[i]);
+        double b2l, b2h = dd_mul(bh, bl, bh, bl, &b2l, fused);
+        double ll, lh = dd_mul(b2h, b2l, bh, bl, &ll, fused);
+        oa[i] = place(dd_scale(cl[i], bh, bl, fused), q, &wide, fast);
+        ob[i] = place(bh + bl, q, &wide, fast);
+        oload[i] = place(dd_div(lh, ll, cbm[i], fused), 3.0 * q - cbe[i], &wide, fast);
         op0[i] = v[i];
-        odelta[i] = scale2(dd_scale(cdm[i], b2h, b2l), cde[i] + 2.0 * q);
-        ostiff[i] = scale2(dd_scale(csm[i], bh, bl), cse[i] + q);
+        odelta[i] = place(dd_scale(cdm[i], b2h, b2l, fused), cde[i] + 2.0 * q, &wide, fast);
+        ostiff[i] = place(dd_scale(csm[i], bh, bl, fused), cse[i] + q, &wide, fast);
     }
+    return wide;
 }
+
+#define GIVEN_VARIANTS(MODE)                                                            \
+    HERTZ_MULTIVERSION static double MODE##_fast(GIVEN_PARAMETERS)                      \
+    {                                                                                   \
+        return MODE##_body(GIVEN_NAMES, 0, 1);                                          \
+    }                                                                                   \
+    HERTZ_FMA_MULTIVERSION static double MODE##_fast_fused(GIVEN_PARAMETERS)            \
+    {                                                                                   \
+        return MODE##_body(GIVEN_NAMES, 1, 1);                                          \
+    }                                                                                   \
+    static double MODE##_exact(GIVEN_PARAMETERS)                                        \
+    {                                                                                   \
+        return MODE##_body(GIVEN_NAMES, 0, 0);                                          \
+    }
+GIVEN_VARIANTS(given_load)
+GIVEN_VARIANTS(given_approach)
+GIVEN_VARIANTS(given_p0)
 
 /* ---------------------------------------------------------- entry points */
 
@@ -729,38 +833,51 @@ hertz_given_block(ptrdiff_t n, int mode, const double *const c[HERTZ_NCOEFFICIEN
                   const double *value, double *const out[HERTZ_NGIVEN], ptrdiff_t *bad)
 {
     double vm[HERTZ_BLOCK], ve[HERTZ_BLOCK];
-    for (ptrdiff_t i = 0; i < n; ++i) {
-        double v = value[i] >= DBL_MIN ? (value[i] <= DBL_MAX ? value[i] : 1.0) : 1.0;
-        vm[i] = split_normal(v, &ve[i]);
-    }
+    double odd = 0.0; /* 1 if a value is zero, subnormal, infinite or NaN */
     for (ptrdiff_t i = 0; i < n; ++i) {
         double v = value[i];
-        if (!(v >= DBL_MIN && v <= DBL_MAX)) {
-            if (!(v >= 0.0 && v <= DBL_MAX)) {
-                *bad = i;
-                return HERTZ_BAD_VALUE;
+        odd = v >= DBL_MIN ? (v <= DBL_MAX ? odd : 1.0) : 1.0;
+        vm[i] = split_normal(v >= DBL_MIN ? (v <= DBL_MAX ? v : 1.0) : 1.0, &ve[i]);
+    }
+    if (odd != 0.0) {
+        for (ptrdiff_t i = 0; i < n; ++i) {
+            double v = value[i];
+            if (!(v >= DBL_MIN && v <= DBL_MAX)) {
+                if (!(v >= 0.0 && v <= DBL_MAX)) {
+                    *bad = i;
+                    return HERTZ_BAD_VALUE;
+                }
+                hertz_scaled s = split(v > 0.0 ? v : 1.0); /* subnormal; zero is set below */
+                vm[i] = s.m;
+                ve[i] = s.e;
             }
-            hertz_scaled s = split(v > 0.0 ? v : 1.0); /* subnormal; zero is set below */
-            vm[i] = s.m;
-            ve[i] = s.e;
         }
     }
 #define GIVEN_ARGUMENTS n, c[0], c[1], c[2], c[3], c[4], c[5], c[6], c[7], c[8], vm, ve, value, \
                         out[0], out[1], out[2], out[3], out[4], out[5]
+    int fused = hertz_fma_available();
     if (mode == HERTZ_GIVEN_LOAD) {
-        given_load(GIVEN_ARGUMENTS);
+        if ((fused ? given_load_fast_fused : given_load_fast)(GIVEN_ARGUMENTS) != 0.0) {
+            given_load_exact(GIVEN_ARGUMENTS);
+        }
     }
     else if (mode == HERTZ_GIVEN_APPROACH) {
-        given_approach(GIVEN_ARGUMENTS);
+        if ((fused ? given_approach_fast_fused : given_approach_fast)(GIVEN_ARGUMENTS) != 0.0) {
+            given_approach_exact(GIVEN_ARGUMENTS);
+        }
     }
     else {
-        given_p0(GIVEN_ARGUMENTS);
+        if ((fused ? given_p0_fast_fused : given_p0_fast)(GIVEN_ARGUMENTS) != 0.0) {
+            given_p0_exact(GIVEN_ARGUMENTS);
+        }
     }
 #undef GIVEN_ARGUMENTS
-    for (ptrdiff_t i = 0; i < n; ++i) {
-        if (value[i] == 0.0) {
-            for (int k = 0; k < HERTZ_NGIVEN; ++k) {
-                out[k][i] = 0.0;
+    if (odd != 0.0) {
+        for (ptrdiff_t i = 0; i < n; ++i) {
+            if (value[i] == 0.0) {
+                for (int k = 0; k < HERTZ_NGIVEN; ++k) {
+                    out[k][i] = 0.0;
+                }
             }
         }
     }

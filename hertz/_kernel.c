@@ -439,6 +439,24 @@ hertz_associate_integrals(ptrdiff_t n, const double *m, const double *p,
 }
 
 int
+hertz_fma_available(void)
+{
+#if defined(__GNUC__) && defined(__x86_64__) && defined(__linux__) && !defined(HERTZ_PLAIN)
+    static int fma = -1;
+    if (fma < 0) {
+        __builtin_cpu_init();
+        /* the x86-64-v3 clones: FMA and AVX2 together */
+        fma = __builtin_cpu_supports("fma") && __builtin_cpu_supports("avx2");
+    }
+    return fma;
+#elif (defined(__aarch64__) || defined(_M_ARM64)) && !defined(HERTZ_PLAIN)
+    return 1;
+#else
+    return 0;
+#endif
+}
+
+int
 hertz_simd(int enable)
 {
     if (enable >= 0) {

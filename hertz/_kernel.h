@@ -9,14 +9,18 @@
 #include <stddef.h>
 
 /* With GCC or Clang on x86-64 Linux, block functions are also compiled for
- * AVX2 and the better one is chosen at load time; elementwise operations
+ * AVX-512 (x86-64-v4) and AVX2 and the best one is chosen at load time; elementwise operations
  * round the same way at any vector width (and -ffp-contract=off forbids
  * fused multiply-adds), so both give the same bits.  -DHERTZ_PLAIN builds
  * the plain version only (tests/test_kernel_builds.py compares them). */
 #if defined(__GNUC__) && defined(__x86_64__) && defined(__linux__) && !defined(HERTZ_PLAIN)
 #define HERTZ_MULTIVERSION __attribute__((target_clones("arch=x86-64-v4", "avx2", "default")))
+/* For code that calls fma(): clones whose processors all have it. */
+#define HERTZ_FMA_MULTIVERSION \
+    __attribute__((target_clones("arch=x86-64-v4", "arch=x86-64-v3", "default")))
 #else
 #define HERTZ_MULTIVERSION
+#define HERTZ_FMA_MULTIVERSION
 #endif
 
 /* Largest n accepted by hertz_ellipse_block. */
@@ -43,6 +47,12 @@ void hertz_associate_integrals(ptrdiff_t n, const double *m, const double *p,
  * positive number. */
 ptrdiff_t hertz_ellipse_table(const double *alpha, ptrdiff_t n, double *lam, double *K,
                               double *E);
+
+/* 1 where fma() is a single instruction of this processor (x86-64-v3 and up
+ * with GCC or Clang on Linux, aarch64), 0 elsewhere and in a HERTZ_PLAIN
+ * build: exact products then use fma() instead of Dekker's splitting (the
+ * same bits either way). */
+int hertz_fma_available(void);
 
 /* Whether the AVX2 start-only path is used; enable = 0 or 1 switches it off
  * or on (on only where the CPU has AVX2) first, enable < 0 only asks. */

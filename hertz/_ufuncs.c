@@ -417,12 +417,24 @@ drive(char *const data[], npy_intp const dims[], npy_intp const steps[], int nin
         }
         return fn((ptrdiff_t)total, in, out, variant);
     }
+    /* A broadcast input (step 0) is copied into its buffer once. */
+    for (int k = 0; k < nin; ++k) {
+        if (steps[k] == 0) {
+            double v = *(const double *)data[k];
+            for (ptrdiff_t i = 0; i < HERTZ_BLOCK; ++i) {
+                buf[k][i] = v;
+            }
+        }
+    }
     for (npy_intp start = 0; start < total; start += HERTZ_BLOCK) {
         ptrdiff_t n = total - start < HERTZ_BLOCK ? (ptrdiff_t)(total - start) : HERTZ_BLOCK;
         for (int k = 0; k < nin; ++k) {
             char *p = data[k] + start * steps[k];
             if (steps[k] == sizeof(double)) {
                 in[k] = (const double *)p;
+            }
+            else if (steps[k] == 0) {
+                in[k] = buf[k];
             }
             else {
                 for (ptrdiff_t i = 0; i < n; ++i) {
