@@ -490,22 +490,20 @@ typedef struct {
  * aligned = 1 for a block whose angles are all zero: the principal planes
  * coincide, rho_x and rho_y are the pair sums (no sine, no square root, no
  * det/rho_x), with the bits the general code gives at angle 0. */
-HERTZ_INLINE void
+HERTZ_INLINE double
 fast_geometry_body(ptrdiff_t n, const double *const in[HERTZ_NGEOMETRY], stage1 *restrict s,
                    const int aligned)
 {
     const double *restrict R1X = in[HERTZ_R1X], *restrict R1Y = in[HERTZ_R1Y];
     const double *restrict R2X = in[HERTZ_R2X], *restrict R2Y = in[HERTZ_R2Y];
     const double *restrict ANGLE = in[HERTZ_ANGLE];
-    const double *restrict E1 = in[HERTZ_E1], *restrict NU1 = in[HERTZ_NU1];
-    const double *restrict E2 = in[HERTZ_E2], *restrict NU2 = in[HERTZ_NU2];
     const double lo = 0x1p-240, hi = 0x1p240;
+    double any = 0.0;
 #if RADIUS_RANGE != 240
 #error "lo and hi are 2^-+RADIUS_RANGE"
 #endif
     for (ptrdiff_t i = 0; i < n; ++i) {
         double r1x = R1X[i], r1y = R1Y[i], r2x = R2X[i], r2y = R2Y[i], angle = ANGLE[i];
-        double e1 = E1[i], nu1 = NU1[i], e2 = E2[i], nu2 = NU2[i];
         /* bad = 1 where the element leaves the common case (NaN included) */
         double bad = 0.0, a;
         a = fabs(r1x);
@@ -521,20 +519,12 @@ fast_geometry_body(ptrdiff_t n, const double *const in[HERTZ_NGEOMETRY], stage1 
         bad = a >= lo ? bad : 1.0;
         bad = a <= hi ? bad : (a == INFINITY ? bad : 1.0);
         bad = fabs(angle) <= FAST_ANGLE ? bad : 1.0;
-        bad = e1 >= 0x1p-900 ? (e1 <= 0x1p1000 ? bad : 1.0) : 1.0;
-        bad = e2 >= 0x1p-900 ? (e2 <= 0x1p1000 ? bad : 1.0) : 1.0;
-        bad = nu1 > -1.0 ? (nu1 <= 0.5 ? bad : 1.0) : 1.0;
-        bad = nu2 > -1.0 ? (nu2 <= 0.5 ? bad : 1.0) : 1.0;
         /* harmless stand-ins where bad (the element is redone by the scalar code) */
         r1x = bad == 0.0 ? r1x : 1.0;
         r1y = bad == 0.0 ? r1y : 1.0;
         r2x = bad == 0.0 ? r2x : 1.0;
         r2y = bad == 0.0 ? r2y : 1.0;
         angle = bad == 0.0 ? angle : 0.0;
-        e1 = bad == 0.0 ? e1 : 1.0;
-        e2 = bad == 0.0 ? e2 : 1.0;
-        nu1 = bad == 0.0 ? nu1 : 0.0;
-        nu2 = bad == 0.0 ? nu2 : 0.0;
         double sx, sy, g1, g2, pabs;
         curvature_products(r1x, r1y, r2x, r2y, &sx, &sy, &g1, &g2, &pabs);
         double rs = (sx + sy) / pabs;
@@ -581,23 +571,65 @@ fast_geometry_body(ptrdiff_t n, const double *const in[HERTZ_NGEOMETRY], stage1 
         s->pabs[i] = pabs;
         s->rx[i] = rx;
         s->ry[i] = ry;
+        any = bad == 0.0 ? any : 1.0;
+    }
+    return any;
+}
+
+/* E* of moduli within [2^-900, 2^1000] (flagged in `other` otherwise), once
+ * for a block whose moduli are all equal.  Returns 1 if any was flagged. */
+HERTZ_MULTIVERSION static double
+fast_moduli(ptrdiff_t n, const double *const in[HERTZ_NGEOMETRY], stage1 *restrict s)
+{
+    const double *restrict E1 = in[HERTZ_E1], *restrict NU1 = in[HERTZ_NU1];
+    const double *restrict E2 = in[HERTZ_E2], *restrict NU2 = in[HERTZ_NU2];
+    double varied = 0.0;
+    for (ptrdiff_t i = 0; i < n; ++i) {
+        varied = E1[i] == E1[0] ? varied : 1.0;
+        varied = NU1[i] == NU1[0] ? varied : 1.0;
+        varied = E2[i] == E2[0] ? varied : 1.0;
+        varied = NU2[i] == NU2[0] ? varied : 1.0;
+    }
+    ptrdiff_t count = varied != 0.0 ? n : 1;
+    double any = 0.0, bad = 0.0;
+    for (ptrdiff_t i = 0; i < count; ++i) {
+        double e1 = E1[i], nu1 = NU1[i], e2 = E2[i], nu2 = NU2[i];
+        bad = 0.0;
+        bad = e1 >= 0x1p-900 ? (e1 <= 0x1p1000 ? bad : 1.0) : 1.0;
+        bad = e2 >= 0x1p-900 ? (e2 <= 0x1p1000 ? bad : 1.0) : 1.0;
+        bad = nu1 > -1.0 ? (nu1 <= 0.5 ? bad : 1.0) : 1.0;
+        bad = nu2 > -1.0 ? (nu2 <= 0.5 ? bad : 1.0) : 1.0;
+        e1 = bad == 0.0 ? e1 : 1.0;
+        e2 = bad == 0.0 ? e2 : 1.0;
+        nu1 = bad == 0.0 ? nu1 : 0.0;
+        nu2 = bad == 0.0 ? nu2 : 0.0;
         double ee;
         s->esm[i] = modulus_mantissa(e1, nu1, e2, nu2, &ee);
         s->ese[i] = ee;
+        s->other[i] = bad == 0.0 ? s->other[i] : 1.0;
+        any = bad == 0.0 ? any : 1.0;
     }
+    if (count == 1) {
+        for (ptrdiff_t i = 1; i < n; ++i) {
+            s->esm[i] = s->esm[0];
+            s->ese[i] = s->ese[0];
+            s->other[i] = bad == 0.0 ? s->other[i] : 1.0;
+        }
+    }
+    return any;
 }
 
-HERTZ_MULTIVERSION static void
+HERTZ_MULTIVERSION static double
 fast_geometry(ptrdiff_t n, const double *const in[HERTZ_NGEOMETRY], stage1 *restrict s)
 {
-    fast_geometry_body(n, in, s, 0);
+    return fast_geometry_body(n, in, s, 0);
 }
 
-HERTZ_MULTIVERSION static void
+HERTZ_MULTIVERSION static double
 fast_geometry_aligned(ptrdiff_t n, const double *const in[HERTZ_NGEOMETRY],
                       stage1 *restrict s)
 {
-    fast_geometry_body(n, in, s, 1);
+    return fast_geometry_body(n, in, s, 1);
 }
 
 /* Stage 1 for a block, with the scalar code for the flagged elements (and
@@ -611,11 +643,10 @@ geometry_stage(ptrdiff_t n, const double *const in[HERTZ_NGEOMETRY], stage1 *s,
     for (ptrdiff_t i = 0; i < n; ++i) {
         turned = in[HERTZ_ANGLE][i] == 0.0 ? turned : 1.0;
     }
-    if (turned != 0.0) {
-        fast_geometry(n, in, s);
-    }
-    else {
-        fast_geometry_aligned(n, in, s);
+    double any = turned != 0.0 ? fast_geometry(n, in, s) : fast_geometry_aligned(n, in, s);
+    any += fast_moduli(n, in, s);
+    if (any == 0.0 && !theta) {
+        return HERTZ_OK;
     }
     for (ptrdiff_t i = 0; i < n; ++i) {
         if (theta) {

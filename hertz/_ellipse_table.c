@@ -90,9 +90,10 @@ poly_avx2(const double *row, __m256i at, __m256d z)
 
 /* table_one four at a time, the same operations in the same order (no FMA),
  * so the same bits.  Elements outside [1, 2^64) are left to the caller. */
-__attribute__((target("avx2"))) static void
+__attribute__((target("avx2"))) static int
 table_avx2(ptrdiff_t n, const double *alpha, double *lam, double *K, double *E)
 {
+    int outside = 0;
     const __m256d one = _mm256_set1_pd(1.0), top = _mm256_set1_pd(TABLE_TOP);
     const __m256d pi_2 = _mm256_set1_pd(PI_2), scale = _mm256_set1_pd(Z_SCALE);
     const __m256d two = _mm256_set1_pd(2.0), two52 = _mm256_set1_pd(0x1p52);
@@ -107,6 +108,7 @@ table_avx2(ptrdiff_t n, const double *alpha, double *lam, double *K, double *E)
         __m256d a = _mm256_loadu_pd(alpha + i);
         __m256d ok = _mm256_and_pd(_mm256_cmp_pd(a, one, _CMP_GE_OQ),
                                    _mm256_cmp_pd(a, top, _CMP_LT_OQ));
+        outside |= _mm256_movemask_pd(ok) != 0xF;
         a = _mm256_blendv_pd(one, a, ok);
         __m256i bits = _mm256_castpd_si256(a);
         __m256i piece = _mm256_sub_epi64(_mm256_srli_epi64(bits, 52 - TABLE_SPLIT_BITS), bias);
@@ -129,9 +131,77 @@ table_avx2(ptrdiff_t n, const double *alpha, double *lam, double *K, double *E)
         _mm256_storeu_pd(E + i, _mm256_blendv_pd(ee, pi_2, is_one));
     }
     for (; i < n; ++i) {
-        double a = alpha[i] >= 1.0 && alpha[i] < TABLE_TOP ? alpha[i] : 1.0;
-        table_one(a, lam + i, K + i, E + i);
+        int ok = alpha[i] >= 1.0 && alpha[i] < TABLE_TOP;
+        outside |= !ok;
+        table_one(ok ? alpha[i] : 1.0, lam + i, K + i, E + i);
     }
+    return outside;
+}
+__attribute__((target("avx512f"))) static inline __m512d
+poly_avx512(const double *row, __m512i at, __m512d z)
+{
+    __m512d r = _mm512_i64gather_pd(at, row + 9, 8);
+    for (int j = 8; j >= 2; --j) {
+        r = _mm512_add_pd(_mm512_mul_pd(r, z), _mm512_i64gather_pd(at, row + j, 8));
+    }
+    __m512d c1 = _mm512_i64gather_pd(at, row + 1, 8);
+    __m512d c0 = _mm512_i64gather_pd(at, row, 8);
+    return _mm512_add_pd(c0, _mm512_add_pd(c1, _mm512_mul_pd(z, r)));
+}
+
+/* table_avx2 eight at a time (AVX-512F), the same operations. */
+__attribute__((target("avx512f"))) static int
+table_avx512(ptrdiff_t n, const double *alpha, double *lam, double *K, double *E)
+{
+    int outside = 0;
+    const __m512d one = _mm512_set1_pd(1.0), top = _mm512_set1_pd(TABLE_TOP);
+    const __m512d pi_2 = _mm512_set1_pd(PI_2), scale = _mm512_set1_pd(Z_SCALE);
+    const __m512d two = _mm512_set1_pd(2.0), two52 = _mm512_set1_pd(0x1p52);
+    const __m512i mantissa = _mm512_set1_epi64(0x000FFFFFFFFFFFFFll);
+    const __m512i exponent_one = _mm512_set1_epi64(0x3FF0000000000000ll);
+    const __m512i bias = _mm512_set1_epi64((long long)1023 << TABLE_SPLIT_BITS);
+    const __m512i low = _mm512_set1_epi64((1 << TABLE_SPLIT_BITS) - 1);
+    const __m512i two52_bits = _mm512_set1_epi64(0x4330000000000000ll);
+    const double *table = &ELLIPSE_TABLE[0][0][0];
+    ptrdiff_t i = 0;
+    for (; i + 8 <= n; i += 8) {
+        __m512d a = _mm512_loadu_pd(alpha + i);
+        __mmask8 ok = _mm512_cmp_pd_mask(a, one, _CMP_GE_OQ)
+                      & _mm512_cmp_pd_mask(a, top, _CMP_LT_OQ);
+        outside |= ok != 0xFF;
+        a = _mm512_mask_blend_pd(ok, one, a);
+        __m512i bits = _mm512_castpd_si512(a);
+        __m512i piece = _mm512_sub_epi64(_mm512_srli_epi64(bits, 52 - TABLE_SPLIT_BITS), bias);
+        __m512d k = _mm512_sub_pd(
+            _mm512_castsi512_pd(_mm512_or_si512(_mm512_and_si512(piece, low), two52_bits)),
+            two52);
+        __m512d f = _mm512_castsi512_pd(
+            _mm512_or_si512(_mm512_and_si512(bits, mantissa), exponent_one));
+        __m512d z = _mm512_sub_pd(_mm512_mul_pd(scale, f),
+                                  _mm512_add_pd(_mm512_add_pd(scale, _mm512_mul_pd(two, k)),
+                                                one));
+        __m512i at = _mm512_sub_epi64(_mm512_slli_epi64(piece, 5), _mm512_slli_epi64(piece, 1));
+        __m512d l = poly_avx512(table, at, z);
+        __m512d kk = poly_avx512(table + TABLE_STRIDE, at, z);
+        __m512d ee = poly_avx512(table + 2 * TABLE_STRIDE, at, z);
+        __mmask8 is_one = _mm512_cmp_pd_mask(a, one, _CMP_EQ_OQ);
+        l = _mm512_mask_blend_pd(_mm512_cmp_pd_mask(l, one, _CMP_GT_OQ), one, l);
+        _mm512_storeu_pd(lam + i, _mm512_mask_blend_pd(is_one, l, one));
+        _mm512_storeu_pd(K + i, _mm512_mask_blend_pd(is_one, kk, pi_2));
+        _mm512_storeu_pd(E + i, _mm512_mask_blend_pd(is_one, ee, pi_2));
+    }
+    return table_avx2(n - i, alpha + i, lam + i, K + i, E + i) | outside;
+}
+
+static int
+avx512_available(void)
+{
+    static int avx512 = -1;
+    if (avx512 < 0) {
+        __builtin_cpu_init();
+        avx512 = __builtin_cpu_supports("avx512f");
+    }
+    return avx512;
 }
 #else
 #define HAVE_AVX2_TABLE 0
@@ -140,18 +210,27 @@ table_avx2(ptrdiff_t n, const double *alpha, double *lam, double *K, double *E)
 ptrdiff_t
 hertz_ellipse_table(const double *alpha, ptrdiff_t n, double *lam, double *K, double *E)
 {
+    int outside = 0;
 #if HAVE_AVX2_TABLE
-    if (hertz_simd(-1)) {
-        table_avx2(n, alpha, lam, K, E);
+    if (hertz_simd(-1) && avx512_available()) {
+        outside = table_avx512(n, alpha, lam, K, E);
+    }
+    else if (hertz_simd(-1)) {
+        outside = table_avx2(n, alpha, lam, K, E);
     }
     else
 #endif
     {
         for (ptrdiff_t i = 0; i < n; ++i) {
-            if (alpha[i] >= 1.0 && alpha[i] < TABLE_TOP) {
+            int ok = alpha[i] >= 1.0 && alpha[i] < TABLE_TOP;
+            outside |= !ok;
+            if (ok) {
                 table_one(alpha[i], lam + i, K + i, E + i);
             }
         }
+    }
+    if (!outside) {
+        return -1;
     }
     for (ptrdiff_t i = 0; i < n; ++i) {
         if (!(alpha[i] >= 1.0 && alpha[i] < TABLE_TOP)) {
