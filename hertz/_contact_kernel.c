@@ -191,14 +191,16 @@ dd_scale(double c, double h, double l, const int fused)
 
 /* -------------------------------------------------- elementary functions */
 
-/* sin x and cos x for |x| <= FAST_ANGLE: x = k pi/2 + r with pi/2 in three
- * parts (the first two of 33 significant bits, so k P1 and k P2 are exact for
- * |k| < 2^20), then the Taylor series of sin r and cos r to r^17 and r^18
- * (truncation below 1e-18 for |r| <= pi/4).  Odd and even in x exactly. */
+/* sin^2 x and cos^2 x for |x| <= FAST_ANGLE: x = k pi/2 + r with pi/2 in
+ * three parts (the first two of 33 significant bits, so k P1 and k P2 are
+ * exact for |k| < 2^20), the Taylor series of sin r to r^17 (truncation below
+ * 1e-18 for |r| <= pi/4), and cos^2 r = 1 - sin^2 r (at least 1/2, so without
+ * cancellation); an odd quadrant swaps the two.  Each keeps its relative
+ * accuracy however small it is, and both are even in x exactly. */
 #define FAST_ANGLE 1e5
 
 static inline void
-sin_cos(double x, double *sin_x, double *cos_x)
+sin2_cos2(double x, double *sin2_x, double *cos2_x)
 {
     const double P1 = 0x1.921fb54400000p+0, P2 = 0x1.0b4611a600000p-34,
                  P3 = 0x1.3198a2e037073p-69, TWO_OVER_PI = 0x1.45f306dc9c883p-1;
@@ -213,21 +215,11 @@ sin_cos(double x, double *sin_x, double *cos_x)
     sp = -1.0 / 120.0 + z * sp;                  /* -1/5! */
     sp = 1.0 / 6.0 + z * sp;                     /* 1/3! */
     double sr = r - r * z * sp;
-    double cp = 1.0 / 6402373705728000.0;        /* 1/18! */
-    cp = -1.0 / 20922789888000.0 + z * cp;       /* -1/16! */
-    cp = 1.0 / 87178291200.0 + z * cp;           /* 1/14! */
-    cp = -1.0 / 479001600.0 + z * cp;            /* -1/12! */
-    cp = 1.0 / 3628800.0 + z * cp;               /* 1/10! */
-    cp = -1.0 / 40320.0 + z * cp;                /* -1/8! */
-    cp = 1.0 / 720.0 + z * cp;                   /* 1/6! */
-    cp = -1.0 / 24.0 + z * cp;                   /* -1/4! */
-    cp = 0.5 + z * cp;                           /* 1/2! */
-    double cr = 1.0 - z * cp;
-    /* j = k mod 4 in {-2, -1, 0, 1, 2}: quadrant 0, 3, 0, 1, 2 */
-    double j = k - 4.0 * ((k * 0.25 + ROUND) - ROUND);
-    double sv = fabs(j) == 1.0 ? cr : sr, cv = fabs(j) == 1.0 ? sr : cr;
-    *sin_x = j >= 2.0 ? -sv : (j < 0.0 ? -sv : sv);
-    *cos_x = j >= 1.0 ? -cv : (j <= -2.0 ? -cv : cv);
+    double s2 = sr * sr, c2 = 1.0 - s2;
+    /* k odd: sin^2 x = cos^2 r */
+    double odd = k - 2.0 * ((k * 0.5 + ROUND) - ROUND);
+    *sin2_x = odd != 0.0 ? c2 : s2;
+    *cos2_x = odd != 0.0 ? s2 : c2;
 }
 
 /* x^(-1/3) for x = m 2^j, 1 <= m < 2, j in {0, 1, 2}, to a few ulp without a
@@ -419,26 +411,22 @@ curvatures(const double r[4], double angle, double *rx, double *ry, double *rs,
     g1 *= f;
     g2 *= f;
     *e = t - shift; /* true curvature = normalised one * 2^e */
-    double s, c;
+    double s = sin(angle), c = cos(angle), ss = s * s, cc = c * c;
     if (fabs(angle) <= FAST_ANGLE) {
-        sin_cos(angle, &s, &c); /* as in fast_geometry: the same bits */
-    }
-    else {
-        s = sin(angle);
-        c = cos(angle);
+        sin2_cos2(angle, &ss, &cc); /* as in fast_geometry: the same bits */
     }
     double rho_x, rho_y, th = 0.0;
-    if (s == 0.0) {
+    if (ss == 0.0) {
         rho_x = fmax(sx, sy);
         rho_y = fmin(sx, sy);
         th = sx > sy ? 0.5 * PI : 0.0;
     }
     else {
-        double ss = s * s, gg = g1 * g2;
+        double gg = g1 * g2;
         double trace = sx + sy;
         double det = sx * sy + gg * ss;                                      /* (1) */
         double dg = gg >= 0.0 ? g1 - g2 : g1 + g2;
-        double d = sqrt(dg * dg + 4.0 * fabs(gg) * (gg >= 0.0 ? c * c : ss)); /* (2) */
+        double d = sqrt(dg * dg + 4.0 * fabs(gg) * (gg >= 0.0 ? cc : ss));  /* (2) */
         rho_x = 0.5 * (trace + d);
         rho_y = d <= 0.5 * trace ? 0.5 * (trace - d) : (rho_x > 0.0 ? det / rho_x : 0.0);
         rho_y = fmin(rho_y, rho_x);
@@ -547,18 +535,18 @@ fast_geometry_body(ptrdiff_t n, const double *const in[HERTZ_NGEOMETRY], stage1 
         else {
             g1 *= f;
             g2 *= f;
-            double sn, cs;
-            sin_cos(angle, &sn, &cs);
-            double ss = sn * sn, cc = cs * cs, gg = g1 * g2;
+            double ss, cc;
+            sin2_cos2(angle, &ss, &cc);
+            double gg = g1 * g2;
             double trace = sx + sy, det = sx * sy + gg * ss;                    /* (1) */
             double dg = gg >= 0.0 ? g1 - g2 : g1 + g2;
             double d = sqrt(dg * dg + 4.0 * fabs(gg) * (gg >= 0.0 ? cc : ss));  /* (2) */
             rx = 0.5 * (trace + d);
             ry = d <= 0.5 * trace ? 0.5 * (trace - d) : det / rx;
             ry = ry < rx ? ry : rx;
-            rx = sn == 0.0 ? (sx > sy ? sx : sy) : rx; /* aligned principal planes */
-            ry = sn == 0.0 ? (sx > sy ? sy : sx) : ry;
-            bad = sn == 0.0 ? bad : (det >= DBL_MIN ? bad : 1.0);
+            rx = ss == 0.0 ? (sx > sy ? sx : sy) : rx; /* aligned principal planes */
+            ry = ss == 0.0 ? (sx > sy ? sy : sx) : ry;
+            bad = ss == 0.0 ? bad : (det >= DBL_MIN ? bad : 1.0);
         }
         bad = rx > 0.0 ? bad : 1.0;
         bad = ry >= DBL_MIN ? bad : 1.0;
