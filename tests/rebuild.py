@@ -73,8 +73,9 @@ def build(tmp_path, *, cc=None, plain=False):
 
 def assert_same_bits(ours, other):
     """The ellipse ufuncs (the 50-digit table's alphas and 50001 log-uniform ones in
-    [e^-60, e^60]), contact_load and contact_coefficients (20000 random scenes) and the
-    stress ufuncs give identical arrays."""
+    [e^-60, e^60]), contact_load, contact_approach, contact_p0 (at random angles and at
+    angle 0, ordinary and extreme values) and contact_coefficients (20000 random scenes)
+    and the stress ufuncs give identical arrays."""
     rng = np.random.default_rng(1)
     alpha = np.concatenate([[r["alpha"] for r in load_table()],
                             np.exp(rng.uniform(-60, 60, 50_001))])
@@ -85,9 +86,15 @@ def assert_same_bits(ours, other):
     geometry = [rng.uniform(1e-3, 1e-1, n), rng.uniform(1e-3, 1e-1, n),
                 -rng.uniform(0.11, 0.2, n), rng.uniform(1e-3, 1e-1, n), rng.uniform(-3, 3, n),
                 np.full(n, 210e9), np.full(n, 0.3), rng.uniform(7e10, 4e11, n), np.full(n, 0.25)]
-    load = 10 ** rng.uniform(-3, 5, n)
-    np.testing.assert_array_equal(ours.contact_load(*geometry, load),
-                                  other.contact_load(*geometry, load), err_msg="contact_load")
+    # ordinary loads (the fast scaling) and loads to 1e+-300 (blocks redone with the exact
+    # scaling); random angles, then all at angle 0 (the aligned geometry)
+    load = np.concatenate([10 ** rng.uniform(-3, 5, n // 2), 10 ** rng.uniform(-300, 300, n // 2)])
+    for angle in (geometry[4], np.zeros(n)):
+        scene = [*geometry[:4], angle, *geometry[5:]]
+        for name, value in (("contact_load", load), ("contact_approach", load * 1e-9),
+                            ("contact_p0", load * 1e6)):
+            np.testing.assert_array_equal(getattr(ours, name)(*scene, value),
+                                          getattr(other, name)(*scene, value), err_msg=name)
     np.testing.assert_array_equal(ours.contact_coefficients(*geometry[:9]),
                                   other.contact_coefficients(*geometry[:9]),
                                   err_msg="contact_coefficients")

@@ -233,3 +233,49 @@ def test_out_of_range_errors_name_the_users_parameter():
         hertz._ufuncs.contact(0, 1.0, 1.0, 1.0, 1.0, 0.0, 1e9, 0.3, 1e9, 0.7, 1.0)
     with pytest.raises(ValueError, match=r"E must be .*got 0\.0"):
         hertz.Body(1.0, 1.0, 0.0, 0.3)
+
+
+def test_contact_ellipse_against_the_50_digit_table():
+    """lambda, K, E of hertz.contact (the piecewise-polynomial table for 1 <= alpha < 2^64,
+    the solver beyond) at every alpha in [1, 2^200] of tests/data/reference_lambda.csv.
+
+    A body (1, alpha) on a plane has rho_x / rho_y = alpha exactly (products with 1)."""
+    from reference import load_table
+
+    # (up to 2^200: radii beyond 2^240 take the scalar geometry, where 1/alpha rounds)
+    rows = [r for r in load_table() if 1.0 <= r["alpha"] <= 2.0**200]
+    alpha = np.array([r["alpha"] for r in rows])
+    c = hertz.contact(hertz.Body(1.0, alpha, *STEEL), hertz.Body.plane(*STEEL), load=1.0)
+    np.testing.assert_array_equal(c.alpha, alpha)
+    worst = {}
+    for name, values in (("lambda", c.ellipticity), ("K", c.K), ("E", c.E)):
+        worst[name] = max(rel_err(v, r[name]) for v, r in zip(values, rows, strict=True))
+    # observed over 1658 alphas: lambda 1.27e-16, K 1.22e-16, E 1.11e-16 (the solver of
+    # hertz.ellipticity: 3.7e-16, 7.0e-16, 6.5e-16)
+    assert worst["lambda"] <= 1.9e-16, worst
+    assert worst["K"] <= 1.9e-16, worst
+    assert worst["E"] <= 1.7e-16, worst
+    assert np.all(c.ellipticity >= 1.0)
+    assert c.ellipticity[0] == 1.0 and c.K[0] == c.E[0] == np.pi / 2  # alpha = 1 exactly
+
+
+def test_fast_and_exact_output_scaling_agree():
+    """A block (64 elements) with one load of 1e300 is redone with the exact scaling; the
+    ordinary loads in it must keep the bits they have in a block of ordinary loads."""
+    rng = np.random.default_rng(5)
+    n = 256
+    ball = hertz.Body.sphere(rng.uniform(2e-3, 2e-2, n), *STEEL)
+    race = hertz.Body(-rng.uniform(2.05e-2, 3e-2, n), rng.uniform(2e-2, 1e-1, n), 70e9, 0.33)
+    angle = rng.uniform(-3, 3, n)
+    for name in ("load", "approach", "p0"):
+        value = {"load": rng.uniform(1, 2e3, n), "approach": rng.uniform(1e-7, 1e-5, n),
+                 "p0": rng.uniform(1e8, 3e9, n)}[name]
+        extreme = value.copy()
+        extreme[::64] = {"load": 1e300, "approach": 1e200, "p0": 1e250}[name]
+        plain = hertz.contact(ball, race, angle=angle, **{name: value})
+        mixed = hertz.contact(ball, race, angle=angle, **{name: extreme})
+        keep = np.ones(n, bool)
+        keep[::64] = False
+        for field in ("a", "b", "load", "p0", "delta", "stiffness"):
+            np.testing.assert_array_equal(getattr(plain, field)[keep],
+                                          getattr(mixed, field)[keep], err_msg=f"{name} {field}")
