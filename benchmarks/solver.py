@@ -3,7 +3,8 @@
     python benchmarks/solver.py [--n 1000000] [--repeats 11] [--no-readme]
 
 Accuracy: maximum relative error against the 50-digit mpmath table
-tests/data/reference_lambda.csv (regenerate with tests/make_reference_table.py).
+tests/data/reference_lambda.csv (regenerate with tests/make_reference_table.py), of
+the solver (hertz.ellipticity) and of hertz.contact's ellipse.
 Speed: N alphas log-uniform in [1, 1e6] (and N contacts); every contender
 is timed once per round, rounds interleaved, and the ratio to one
 scipy.special.ellipk + ellipe pass over N parameters is taken within each
@@ -59,6 +60,15 @@ def accuracy() -> dict[str, float]:
         if iterations == 1:
             for name in ("m", "K", "E"):
                 out[f"{name} at the root, all table points"] = err[name].max()
+    # hertz.contact's own lambda, K, E (the piecewise-polynomial table below 2^64, the
+    # solver above): a body (1, alpha) on a plane has rho_x / rho_y = alpha exactly.
+    rows = [r for r in rows if 1.0 <= r["alpha"] <= 2.0**200]
+    alpha = np.array([r["alpha"] for r in rows])
+    steel = (210e9, 0.3)
+    c = hertz.contact(hertz.Body(1.0, alpha, *steel), hertz.Body.plane(*steel), load=1.0)
+    for name, values in (("lambda", c.ellipticity), ("K", c.K), ("E", c.E)):
+        out[f"hertz.contact's {name}, the {len(rows)} table points in [1, 2^200]"] = max(
+            float(abs((mp.mpf(v) - r[name]) / r[name])) for v, r in zip(values, rows, strict=True))
     return out
 
 
