@@ -2,7 +2,7 @@
  * hertz._ufuncs, contact formulas: from the principal radii of two bodies,
  * the angle between their principal planes and their moduli to the Hertz
  * contact ellipse, peak pressure, approach and stiffness, one element at a
- * time (the ellipse ratio comes from the solver in _kernel.c).
+ * time (lambda, K and E come from the table of _ellipse_table.c).
  *
  * Relative curvatures (Johnson, Contact Mechanics, 1985, sec. 4.2), with
  * k_ix = 1/R_ix, psi the angle from body 1's x axis to body 2's:
@@ -13,10 +13,12 @@
  *     (rho_x - rho_y)^2 = (g1 - g2)^2 + 4 g1 g2 cos^2 psi
  *                       = (g1 + g2)^2 - 4 g1 g2 sin^2 psi.              (2)
  *
- * A pair sum of a concave and a convex radius is taken as (Ra + Rb)/(Ra Rb),
- * exact however closely the surfaces conform; (1) and the form of (2) whose
- * terms have one sign keep every digit, and all three are symmetric in the
- * two bodies, so swapping them (psi -> -psi) gives the same bits.
+ * Sx, Sy, g1, g2 are formed times Pi = |r1x r1y r2x r2y| (curvature_products):
+ * a pair sum of a concave and a convex radius is (Ra + Rb) times a product of
+ * radii, exact however closely the surfaces conform, and one division by Pi
+ * replaces eight.  (1) and the form of (2) whose terms have one sign keep
+ * every digit, and all three are symmetric in the two bodies, so swapping
+ * them (psi -> -psi) gives the same bits.
  *
  * Contact (Hokada, Iizuka & Takada sec. 2; Johnson sec. 4.2), with
  * lambda = a/b, K, E at m = 1 - 1/lambda^2 and rho = rho_x + rho_y, written
@@ -32,17 +34,19 @@
  * so a given load, approach or peak pressure first gives b and then the rest.
  * The coefficients and b carry their binary exponent apart (hertz_scaled):
  * P = 1e300 or E* = 5e-324 never overflow or lose digits before the root.
- * b is carried in double-double (Dekker's products, no fused multiply-add)
- * and every output is c b^k rounded once.
+ * b is carried in double-double (exact products by fma() where the processor
+ * has it, by Dekker's splitting elsewhere: the same bits) and every output is
+ * c b^k rounded once.
  *
  * Layout: a block of up to HERTZ_BLOCK elements goes through stages, each a
  * loop over arrays written with doubles and 64-bit bit patterns only (no
  * integer-double conversions, no branches), so that the compiler
- * vectorises it: geometry (fast_geometry), the ellipse solver, the
- * coefficients, the load-dependent outputs (given_*).  Elements outside the
- * common case (radii beyond 2^+-300, extreme moduli, |angle| > 1e5, zero or
- * subnormal values, no valid contact) are flagged and done by the scalar
- * code, which also names errors.  A single contact goes through the same
+ * vectorises it: geometry (fast_geometry, fast_moduli), the ellipse table,
+ * the coefficients, the load-dependent outputs (given_*).  Elements outside
+ * the common case (radii beyond 2^+-240, moduli beyond [2^-900, 2^1000],
+ * |angle| > 1e5, no valid contact) are flagged and done by the scalar code,
+ * which also names errors; zero, subnormal and bad values and outputs beyond
+ * 2^+-1000 make their block take the exact variants of the load stage.  A single contact goes through the same
  * block code (n = 1), so it has the same bits as in an array.
  */
 #include <float.h>

@@ -441,7 +441,7 @@ hertz_associate_integrals(ptrdiff_t n, const double *m, const double *p,
 int
 hertz_fma_available(void)
 {
-#if defined(__GNUC__) && defined(__x86_64__) && defined(__linux__) && !defined(HERTZ_PLAIN)
+#if HERTZ_FMA_CLONES
     static int fma = -1;
     if (fma < 0) {
         __builtin_cpu_init();

@@ -14,13 +14,21 @@
  * fused multiply-adds), so both give the same bits.  -DHERTZ_PLAIN builds
  * the plain version only (tests/test_kernel_builds.py compares them). */
 #if defined(__GNUC__) && defined(__x86_64__) && defined(__linux__) && !defined(HERTZ_PLAIN)
+#if (defined(__clang__) && __clang_major__ >= 14) || (!defined(__clang__) && __GNUC__ >= 11)
 #define HERTZ_MULTIVERSION __attribute__((target_clones("arch=x86-64-v4", "avx2", "default")))
 /* For code that calls fma(): clones whose processors all have it. */
 #define HERTZ_FMA_MULTIVERSION \
     __attribute__((target_clones("arch=x86-64-v4", "arch=x86-64-v3", "default")))
+#define HERTZ_FMA_CLONES 1
+#else /* older compilers (manylinux2014's GCC 10) know no x86-64-vN level */
+#define HERTZ_MULTIVERSION __attribute__((target_clones("avx2", "default")))
+#define HERTZ_FMA_MULTIVERSION
+#define HERTZ_FMA_CLONES 0
+#endif
 #else
 #define HERTZ_MULTIVERSION
 #define HERTZ_FMA_MULTIVERSION
+#define HERTZ_FMA_CLONES 0
 #endif
 
 /* Largest n accepted by hertz_ellipse_block. */
@@ -49,8 +57,8 @@ ptrdiff_t hertz_ellipse_table(const double *alpha, ptrdiff_t n, double *lam, dou
                               double *E);
 
 /* 1 where fma() is a single instruction of this processor (x86-64-v3 and up
- * with GCC or Clang on Linux, aarch64), 0 elsewhere and in a HERTZ_PLAIN
- * build: exact products then use fma() instead of Dekker's splitting (the
+ * with GCC 11+ or Clang 14+ on Linux, aarch64), 0 elsewhere and in a
+ * HERTZ_PLAIN build: exact products then use fma() instead of Dekker's splitting (the
  * same bits either way). */
 int hertz_fma_available(void);
 
