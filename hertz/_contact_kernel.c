@@ -193,6 +193,29 @@ dd_scale(double c, double h, double l, const int fused)
     return p + (e + c * l);
 }
 
+/* a + b = s + err exactly (Knuth), either order of a and b. */
+static inline double
+two_sum(double a, double b, double *err)
+{
+    double s = a + b, bb = s - a;
+    *err = (a - (s - bb)) + (b - bb);
+    return s;
+}
+
+/* (ah + al) + (bh + bl) as a double-double, to 2^-104 relative however much
+ * the two cancel. */
+static inline double
+dd_add(double ah, double al, double bh, double bl, double *lo)
+{
+    double e, s = two_sum(ah, bh, &e), f, t = two_sum(al, bl, &f);
+    e += t;
+    double u = s + e;
+    e = e - (u - s) + f;
+    s = u + e;
+    *lo = e - (s - u);
+    return s;
+}
+
 /* -------------------------------------------------- elementary functions */
 
 /* sin^2 x and cos^2 x for |x| <= FAST_ANGLE: x = k pi/2 + r with pi/2 in
@@ -224,6 +247,50 @@ sin2_cos2(double x, double *sin2_x, double *cos2_x)
     double odd = k - 2.0 * ((k * 0.5 + ROUND) - ROUND);
     *sin2_x = odd != 0.0 ? c2 : s2;
     *cos2_x = odd != 0.0 ? s2 : c2;
+}
+
+/* sin^2 x and cos^2 x as double-doubles (to about 2^-100 relative) for
+ * |x| <= FAST_ANGLE, for the scenes whose curvature determinant cancels: the
+ * reduction of sin2_cos2 carried in double-double with a fourth part of pi/2,
+ * the sine series to r^27 (the terms below 1e-16 summed in double). */
+static void
+sin2_cos2_dd(double x, double ss[2], double cc[2])
+{
+    const double P1 = 0x1.921fb54400000p+0, P2 = 0x1.0b4611a600000p-34,
+                 P3 = 0x1.3198a2e037073p-69, P4 = 0x1.129024e088a68p-123,
+                 TWO_OVER_PI = 0x1.45f306dc9c883p-1;
+    double k = (x * TWO_OVER_PI + ROUND) - ROUND;
+    double rl, rh = two_sum(x - k * P1, -(k * P2), &rl); /* k P1, k P2 and x - k P1 exact */
+    double pl, ph = two_prod(k, P3, &pl, 0);
+    rh = dd_add(rh, rl, -ph, -(pl + k * P4), &rl);
+    double zl, zh = dd_mul(rh, rl, rh, rl, &zl, 0);
+    /* sin r / r = sum_j (-1)^j z^j / (2j + 1)!: j >= 8 in double, j <= 7 in
+     * double-double with 1/(2j + 1)! = hi + lo (the factorials are exact). */
+    double tail = 0.0, factorial[14];
+    factorial[0] = 1.0;
+    for (int j = 1; j < 14; ++j) {
+        factorial[j] = factorial[j - 1] * (2.0 * j) * (2.0 * j + 1.0);
+    }
+    for (int j = 13; j >= 8; --j) {
+        tail = (j % 2 ? -1.0 : 1.0) / factorial[j] + zh * tail;
+    }
+    double al = 0.0, ah = tail;
+    for (int j = 7; j >= 0; --j) {
+        double h = 1.0 / factorial[j], e, p = two_prod(h, factorial[j], &e, 0);
+        double l = ((1.0 - p) - e) / factorial[j];
+        h = j % 2 ? -h : h;
+        l = j % 2 ? -l : l;
+        ah = dd_mul(ah, al, zh, zl, &al, 0);
+        ah = dd_add(h, l, ah, al, &al);
+    }
+    double sl, sh = dd_mul(rh, rl, ah, al, &sl, 0);
+    double s2l, s2h = dd_mul(sh, sl, sh, sl, &s2l, 0);
+    double c2l, c2h = dd_add(1.0, 0.0, -s2h, -s2l, &c2l);
+    int odd = fmod(k, 2.0) != 0.0;
+    ss[0] = odd ? c2h : s2h;
+    ss[1] = odd ? c2l : s2l;
+    cc[0] = odd ? s2h : c2h;
+    cc[1] = odd ? s2l : c2l;
 }
 
 /* x^(-1/3) for x = m 2^j, 1 <= m < 2, j in {0, 1, 2}, to a few ulp without a
@@ -282,6 +349,44 @@ curvature_products(double r1x, double r1y, double r2x, double r2y, double *sx, d
     *pabs = fabs(pi);
 }
 
+/* curvature_products as double-doubles (hi, lo pairs): the sums and products
+ * of radii exact, their products to 2^-104.  Symmetric in the bodies as the
+ * double version is. */
+static void
+curvature_products_dd(double r1x, double r1y, double r2x, double r2y, double sx[2],
+                      double sy[2], double g1[2], double g2[2])
+{
+    double f1x = fabs(r1x) == INFINITY ? 0.0 : r1x, f1y = fabs(r1y) == INFINITY ? 0.0 : r1y;
+    double f2x = fabs(r2x) == INFINITY ? 0.0 : r2x, f2y = fabs(r2y) == INFINITY ? 0.0 : r2y;
+    double u1x = f1x == 0.0 ? 1.0 : r1x, u1y = f1y == 0.0 ? 1.0 : r1y;
+    double u2x = f2x == 0.0 ? 1.0 : r2x, u2y = f2y == 0.0 ? 1.0 : r2y;
+    double sign = (u1x * u1y) * (u2x * u2y) < 0.0 ? -1.0 : 1.0;
+    double q1l, q1 = two_prod(u1x, u1y, &q1l, 0), q2l, q2 = two_prod(u2x, u2y, &q2l, 0);
+    double pxl, px = two_prod(u1x, u2x, &pxl, 0), pyl, py = two_prod(u1y, u2y, &pyl, 0);
+    double nl, nh;
+    nh = two_sum(f1x == 0.0 ? 0.0 : u2x, f2x == 0.0 ? 0.0 : u1x, &nl);
+    sx[0] = sign * dd_mul(nh, nl, py, pyl, &sx[1], 0);
+    nh = two_sum(f1y == 0.0 ? 0.0 : u2y, f2y == 0.0 ? 0.0 : u1y, &nl);
+    sy[0] = sign * dd_mul(nh, nl, px, pxl, &sy[1], 0);
+    nh = two_sum(f1x == 0.0 ? 0.0 : u1y, -(f1y == 0.0 ? 0.0 : u1x), &nl);
+    g1[0] = sign * dd_mul(nh, nl, q2, q2l, &g1[1], 0);
+    nh = two_sum(f2x == 0.0 ? 0.0 : u2y, -(f2y == 0.0 ? 0.0 : u2x), &nl);
+    g2[0] = sign * dd_mul(nh, nl, q1, q1l, &g2[1], 0);
+    sx[1] *= sign;
+    sy[1] *= sign;
+    g1[1] *= sign;
+    g2[1] *= sign;
+}
+
+/* Whether rho_x + rho_y or rho_x rho_y, eq. (1), loses more than one bit to
+ * cancellation (then the scalar code recomputes them in double-double). */
+static inline int
+cancels(double sx, double sy, double gg, double ss, double trace, double det)
+{
+    return fabs(trace) < 0.5 * (fabs(sx) + fabs(sy))
+           || fabs(det) < 0.5 * (fabs(sx * sy) + fabs(gg * ss));
+}
+
 /* 1/ra + 1/rb, a concave-convex pair without cancellation. */
 static inline double
 pair_sum(double ra, double rb)
@@ -311,7 +416,7 @@ pair_difference(double rx, double ry)
 /* E* = E_lo / (c_lo + c_hi E_lo / E_hi) with E_lo <= E_hi, c = 1 - nu^2, as
  * em 2^ee (E_lo = em 2^ee): one division, for moduli in [2^-900, 2^1000]
  * (where no product below leaves the normal range).  Symmetric in the bodies. */
-static inline double
+HERTZ_INLINE double
 modulus_mantissa(double e1, double nu1, double e2, double nu2, double *ee)
 {
     double c1 = (1.0 - nu1) * (1.0 + nu1), c2 = (1.0 - nu2) * (1.0 + nu2);
@@ -430,6 +535,29 @@ curvatures(const double r[4], double angle, double *rx, double *ry, double *rs,
         double trace = sx + sy;
         double det = sx * sy + gg * ss;                                      /* (1) */
         double dg = gg >= 0.0 ? g1 - g2 : g1 + g2;
+        if (products && fabs(angle) <= FAST_ANGLE && cancels(sx, sy, gg, ss, trace, det)) {
+            /* the same in double-double from the radii and the angle */
+            double Sx[2], Sy[2], G1[2], G2[2], SS[2], CC[2], pl, ph, ql, qh, hi, lo;
+            curvature_products_dd(radius[0], radius[1], radius[2], radius[3], Sx, Sy, G1, G2);
+            for (int k = 0; k < 2; ++k) {
+                Sx[k] *= f;
+                Sy[k] *= f;
+                G1[k] *= f;
+                G2[k] *= f;
+            }
+            sin2_cos2_dd(angle, SS, CC);
+            trace = dd_add(Sx[0], Sx[1], Sy[0], Sy[1], &lo);
+            ph = dd_mul(Sx[0], Sx[1], Sy[0], Sy[1], &pl, 0);
+            qh = dd_mul(G1[0], G1[1], G2[0], G2[1], &ql, 0);
+            qh = dd_mul(qh, ql, SS[0], SS[1], &ql, 0);
+            det = dd_add(ph, pl, qh, ql, &lo);
+            hi = dd_add(G1[0], G1[1], gg >= 0.0 ? -G2[0] : G2[0], gg >= 0.0 ? -G2[1] : G2[1],
+                        &lo);
+            dg = hi;
+            ss = SS[0];
+            cc = CC[0];
+            sum = trace * pow2(t) / *pabs;
+        }
         double d = sqrt(dg * dg + 4.0 * fabs(gg) * (gg >= 0.0 ? cc : ss));  /* (2) */
         rho_x = 0.5 * (trace + d);
         rho_y = d <= 0.5 * trace ? 0.5 * (trace - d) : (rho_x > 0.0 ? det / rho_x : 0.0);
@@ -551,6 +679,8 @@ fast_geometry_body(ptrdiff_t n, const double *const in[HERTZ_NGEOMETRY], stage1 
             rx = ss == 0.0 ? (sx > sy ? sx : sy) : rx; /* aligned principal planes */
             ry = ss == 0.0 ? (sx > sy ? sy : sx) : ry;
             bad = ss == 0.0 ? bad : (det >= DBL_MIN ? bad : 1.0);
+            /* (1) or the trace cancelling: the scalar code's double-double */
+            bad = ss == 0.0 ? bad : (cancels(sx, sy, gg, ss, trace, det) ? 1.0 : bad);
         }
         bad = rx > 0.0 ? bad : 1.0;
         bad = ry >= DBL_MIN ? bad : 1.0;
@@ -568,8 +698,21 @@ fast_geometry_body(ptrdiff_t n, const double *const in[HERTZ_NGEOMETRY], stage1 
     return any;
 }
 
-/* E* of moduli within [2^-900, 2^1000] (flagged in `other` otherwise), once
- * for a block whose moduli are all equal.  Returns 1 if any was flagged. */
+/* E* of moduli within [2^-900, 2^1000]; *bad = 1 for others. */
+HERTZ_INLINE double
+fast_modulus(double e1, double nu1, double e2, double nu2, double *ee, double *bad)
+{
+    double b = 0.0;
+    b = e1 >= 0x1p-900 ? (e1 <= 0x1p1000 ? b : 1.0) : 1.0;
+    b = e2 >= 0x1p-900 ? (e2 <= 0x1p1000 ? b : 1.0) : 1.0;
+    b = nu1 > -1.0 ? (nu1 <= 0.5 ? b : 1.0) : 1.0;
+    b = nu2 > -1.0 ? (nu2 <= 0.5 ? b : 1.0) : 1.0;
+    *bad = b;
+    return modulus_mantissa(e1, nu1, e2, nu2, ee); /* garbage where b = 1, never used */
+}
+
+/* E* per element into s (flagging elements in `other`), computed once for a
+ * block whose moduli are all equal.  Returns 1 if any was flagged. */
 HERTZ_MULTIVERSION static double
 fast_moduli(ptrdiff_t n, const double *const in[HERTZ_NGEOMETRY], stage1 *restrict s)
 {
@@ -582,31 +725,24 @@ fast_moduli(ptrdiff_t n, const double *const in[HERTZ_NGEOMETRY], stage1 *restri
         varied = E2[i] == E2[0] ? varied : 1.0;
         varied = NU2[i] == NU2[0] ? varied : 1.0;
     }
-    ptrdiff_t count = varied != 0.0 ? n : 1;
-    double any = 0.0, bad = 0.0;
-    for (ptrdiff_t i = 0; i < count; ++i) {
-        double e1 = E1[i], nu1 = NU1[i], e2 = E2[i], nu2 = NU2[i];
-        bad = 0.0;
-        bad = e1 >= 0x1p-900 ? (e1 <= 0x1p1000 ? bad : 1.0) : 1.0;
-        bad = e2 >= 0x1p-900 ? (e2 <= 0x1p1000 ? bad : 1.0) : 1.0;
-        bad = nu1 > -1.0 ? (nu1 <= 0.5 ? bad : 1.0) : 1.0;
-        bad = nu2 > -1.0 ? (nu2 <= 0.5 ? bad : 1.0) : 1.0;
-        e1 = bad == 0.0 ? e1 : 1.0;
-        e2 = bad == 0.0 ? e2 : 1.0;
-        nu1 = bad == 0.0 ? nu1 : 0.0;
-        nu2 = bad == 0.0 ? nu2 : 0.0;
-        double ee;
-        s->esm[i] = modulus_mantissa(e1, nu1, e2, nu2, &ee);
-        s->ese[i] = ee;
-        s->other[i] = bad == 0.0 ? s->other[i] : 1.0;
-        any = bad == 0.0 ? any : 1.0;
-    }
-    if (count == 1) {
-        for (ptrdiff_t i = 1; i < n; ++i) {
-            s->esm[i] = s->esm[0];
-            s->ese[i] = s->ese[0];
-            s->other[i] = bad == 0.0 ? s->other[i] : 1.0;
+    double any = 0.0;
+    if (varied == 0.0) {
+        double ee, bad, em = fast_modulus(E1[0], NU1[0], E2[0], NU2[0], &ee, &bad);
+        for (ptrdiff_t i = 0; i < n; ++i) {
+            s->esm[i] = em;
+            s->ese[i] = ee;
+            double other = s->other[i];
+            s->other[i] = other > bad ? other : bad; /* both 0 or 1 */
         }
+        return bad;
+    }
+    double *restrict esm = s->esm, *restrict ese = s->ese, *restrict flag = s->other;
+    for (ptrdiff_t i = 0; i < n; ++i) {
+        double ee, bad;
+        esm[i] = fast_modulus(E1[i], NU1[i], E2[i], NU2[i], &ee, &bad);
+        ese[i] = ee;
+        flag[i] = flag[i] > bad ? flag[i] : bad;
+        any = bad == 0.0 ? any : 1.0;
     }
     return any;
 }

@@ -1,7 +1,8 @@
 """hertz.contact on hard scenes against mpmath, and its invariants to a few ulp.
 
-Hard scenes: nearly conforming bodies at an angle, extreme loads, radii and
-moduli, curvature ratios near the double range.  Invariants (hypothesis):
+Hard scenes: nearly conforming bodies at an angle, a saddle contact whose
+curvature determinant cancels, extreme loads, radii and moduli, curvature
+ratios near the double range.  Invariants (hypothesis):
 swapping the bodies, turning both by 90 degrees, circles at any angle,
 scaling the load, and the load -> approach -> load and load -> p0 -> load
 round trips.
@@ -34,6 +35,9 @@ def groove(g):
     return (6e-3, 6e-3, *STEEL), (-6e-3 * (1 + g), 40e-3, *STEEL)
 
 
+SADDLE = ((0.08073941314545452, 0.02745196686562482, *STEEL),
+          (-0.029033934600377176, 0.08262373225124177, 70e9, 0.33))
+
 HARD = {
     "groove conforming to 1e-6 at 0.3 rad": (*groove(1e-6), 1500.0, 0.3),
     "groove conforming to 1e-10 at 0.3 rad": (*groove(1e-10), 1500.0, 0.3),
@@ -55,6 +59,11 @@ HARD = {
                                         1e-150),
     "angle 1e6 rad": ((0.01, 0.03, *STEEL), (0.02, -0.5, 70e9, 0.33), 10.0, 1e6),
     "nu near -1": ((0.01, 0.03, 1e9, -0.999999), (0.02, 0.5, 70e9, 0.5), 10.0, 0.7),
+    # A body concave across at an angle: rho_x rho_y = Sx Sy + g1 g2 sin^2(psi) is a
+    # difference (28x and 1e6x below its terms; the double formula was off by 1.2e-14 and
+    # 3.2e-10 in alpha), and so is rho_x + rho_y = Sx + Sy (Sx < 0).
+    "saddle at an angle, det 28x below its terms": (*SADDLE, 10.0, 1.4756902810579353),
+    "saddle at an angle, det 1e6x below its terms": (*SADDLE, 10.0, 1.3608494129183655),
 }
 
 
@@ -279,3 +288,20 @@ def test_fast_and_exact_output_scaling_agree():
         for field in ("a", "b", "load", "p0", "delta", "stiffness"):
             np.testing.assert_array_equal(getattr(plain, field)[keep],
                                           getattr(mixed, field)[keep], err_msg=f"{name} {field}")
+
+
+@pytest.mark.parametrize("angle", [1.4756902810579353, 1.3608494129183655, -1.5, 1.7])
+def test_saddle_swapped_and_in_an_array(angle):
+    """The double-double path of cancelling scenes is symmetric in the bodies, and a scene
+    in an array (block code, flagged to the scalar path) has the bits of a single call."""
+    b1, b2 = SADDLE
+    one = hertz.contact(hertz.Body(*b1), hertz.Body(*b2), load=10.0, angle=angle)
+    swapped = hertz.contact(hertz.Body(*b2), hertz.Body(*b1), load=10.0, angle=-angle)
+    mixed = hertz.contact(hertz.Body([b1[0], 0.01, b1[0]], [b1[1], 0.01, b1[1]], *STEEL[:1],
+                                     b1[3]),
+                          hertz.Body([b2[0], 0.02, b2[0]], [b2[1], 0.03, b2[1]], b2[2], b2[3]),
+                          load=[10.0, 5.0, 10.0], angle=[angle, 0.3, angle])
+    for field in ("a", "b", "p0", "delta", "alpha", "rho_x", "rho_y"):
+        assert getattr(one, field) == getattr(swapped, field), field
+        assert getattr(mixed, field)[0] == getattr(one, field), field
+        assert getattr(mixed, field)[2] == getattr(one, field), field
