@@ -11,14 +11,18 @@
  *     rho_x + rho_y = Sx + Sy,
  *     rho_x rho_y   = Sx Sy + g1 g2 sin^2 psi,                          (1)
  *     (rho_x - rho_y)^2 = (g1 - g2)^2 + 4 g1 g2 cos^2 psi
- *                       = (g1 + g2)^2 - 4 g1 g2 sin^2 psi.              (2)
+ *                       = (g1 + g2)^2 - 4 g1 g2 sin^2 psi,              (2)
+ *     g1 - g2 = Cx - Cy,  g1 + g2 = Sx - Sy,  Cx = k1x + k2y,  Cy = k1y + k2x.
  *
  * Sx, Sy, g1, g2 are formed times Pi = |r1x r1y r2x r2y| (curvature_products):
  * a pair sum of a concave and a convex radius is (Ra + Rb) times a product of
  * radii, exact however closely the surfaces conform, and one division by Pi
  * replaces eight.  (1) and the form of (2) whose terms have one sign keep
  * every digit, and all three are symmetric in the two bodies, so swapping
- * them (psi -> -psi) gives the same bits.
+ * them (psi -> -psi) gives the same bits.  g1 -+ g2 are taken as differences
+ * of the pair sums Cx, Cy or Sx, Sy: for two nearly conforming bodies g1 and
+ * -g2 nearly cancel, while the pair sums, each exact, differ by an amount of
+ * the order of rho_x + rho_y (the contact is valid only then).
  *
  * Contact (Hokada, Iizuka & Takada sec. 2; Johnson sec. 4.2), with
  * lambda = a/b, K, E at m = 1 - 1/lambda^2 and rho = rho_x + rho_y, written
@@ -319,6 +323,7 @@ inverse_cube_root(double m, double j)
  *
  *     Sx Pi = (r1x + r2x) r1y r2y,   Sy Pi = (r1y + r2y) r1x r2x,
  *     g1 Pi = (r1y - r1x) r2x r2y,   g2 Pi = (r2y - r2x) r1x r1y,
+ *     Cx Pi = (r1x + r2y) r1y r2x,   Cy Pi = (r1y + r2x) r1x r2y,
  *
  * each times the sign of r1x r1y r2x r2y.  A pair sum of a concave and a
  * convex radius and a difference of radii of one sign are single roundings
@@ -330,7 +335,7 @@ inverse_cube_root(double m, double j)
 
 static inline void
 curvature_products(double r1x, double r1y, double r2x, double r2y, double *sx, double *sy,
-                   double *g1, double *g2, double *pabs)
+                   double *g1, double *g2, double *cx, double *cy, double *pabs)
 {
     double f1x = fabs(r1x) == INFINITY ? 0.0 : r1x, f1y = fabs(r1y) == INFINITY ? 0.0 : r1y;
     double f2x = fabs(r2x) == INFINITY ? 0.0 : r2x, f2y = fabs(r2y) == INFINITY ? 0.0 : r2y;
@@ -346,6 +351,10 @@ curvature_products(double r1x, double r1y, double r2x, double r2y, double *sx, d
     *sy = sign * nsy * (u1x * u2x);
     *g1 = sign * ng1 * q2;
     *g2 = sign * ng2 * q1;
+    double ncx = (f1x == 0.0 ? 0.0 : u2y) + (f2y == 0.0 ? 0.0 : u1x);
+    double ncy = (f1y == 0.0 ? 0.0 : u2x) + (f2x == 0.0 ? 0.0 : u1y);
+    *cx = sign * ncx * (u1y * u2x);
+    *cy = sign * ncy * (u1x * u2y);
     *pabs = fabs(pi);
 }
 
@@ -354,7 +363,7 @@ curvature_products(double r1x, double r1y, double r2x, double r2y, double *sx, d
  * double version is. */
 static void
 curvature_products_dd(double r1x, double r1y, double r2x, double r2y, double sx[2],
-                      double sy[2], double g1[2], double g2[2])
+                      double sy[2], double g1[2], double g2[2], double cx[2], double cy[2])
 {
     double f1x = fabs(r1x) == INFINITY ? 0.0 : r1x, f1y = fabs(r1y) == INFINITY ? 0.0 : r1y;
     double f2x = fabs(r2x) == INFINITY ? 0.0 : r2x, f2y = fabs(r2y) == INFINITY ? 0.0 : r2y;
@@ -372,10 +381,17 @@ curvature_products_dd(double r1x, double r1y, double r2x, double r2y, double sx[
     g1[0] = sign * dd_mul(nh, nl, q2, q2l, &g1[1], 0);
     nh = two_sum(f2x == 0.0 ? 0.0 : u2y, -(f2y == 0.0 ? 0.0 : u2x), &nl);
     g2[0] = sign * dd_mul(nh, nl, q1, q1l, &g2[1], 0);
+    double cxl, cxp = two_prod(u1y, u2x, &cxl, 0), cyl, cyp = two_prod(u1x, u2y, &cyl, 0);
+    nh = two_sum(f1x == 0.0 ? 0.0 : u2y, f2y == 0.0 ? 0.0 : u1x, &nl);
+    cx[0] = sign * dd_mul(nh, nl, cxp, cxl, &cx[1], 0);
+    nh = two_sum(f1y == 0.0 ? 0.0 : u2x, f2x == 0.0 ? 0.0 : u1y, &nl);
+    cy[0] = sign * dd_mul(nh, nl, cyp, cyl, &cy[1], 0);
     sx[1] *= sign;
     sy[1] *= sign;
     g1[1] *= sign;
     g2[1] *= sign;
+    cx[1] *= sign;
+    cy[1] *= sign;
 }
 
 /* Whether rho_x + rho_y or rho_x rho_y, eq. (1), loses more than one bit to
@@ -496,12 +512,12 @@ curvatures(const double r[4], double angle, double *rx, double *ry, double *rs,
         double a = fabs(radius[k]);
         products &= a == INFINITY || (a >= 0x1p-240 && a <= 0x1p240);
     }
-    double sx, sy, g1, g2, sum = 0.0;
+    double sx, sy, g1, g2, cx, cy, sum = 0.0;
     *pabs = 1.0;
     if (products) {
         /* as in fast_geometry: the same bits */
         curvature_products(radius[0], radius[1], radius[2], radius[3], &sx, &sy, &g1, &g2,
-                           pabs);
+                           &cx, &cy, pabs);
         sum = (sx + sy) / *pabs;
     }
     else {
@@ -509,6 +525,8 @@ curvatures(const double r[4], double angle, double *rx, double *ry, double *rs,
         sy = pair_sum(radius[1], radius[3]);
         g1 = pair_difference(radius[0], radius[1]);
         g2 = pair_difference(radius[2], radius[3]);
+        cx = pair_sum(radius[0], radius[3]);
+        cy = pair_sum(radius[1], radius[2]);
     }
     /* Normalise so that the largest of them lies in [1, 2): products below
      * cannot overflow, and a subnormal determinant means alpha > 1e307. */
@@ -519,6 +537,8 @@ curvatures(const double r[4], double angle, double *rx, double *ry, double *rs,
     sy *= f;
     g1 *= f;
     g2 *= f;
+    cx *= f;
+    cy *= f;
     *e = t - shift; /* true curvature = normalised one * 2^e */
     double s = sin(angle), c = cos(angle), ss = s * s, cc = c * c;
     if (fabs(angle) <= FAST_ANGLE) {
@@ -534,16 +554,19 @@ curvatures(const double r[4], double angle, double *rx, double *ry, double *rs,
         double gg = g1 * g2;
         double trace = sx + sy;
         double det = sx * sy + gg * ss;                                      /* (1) */
-        double dg = gg >= 0.0 ? g1 - g2 : g1 + g2;
+        double dg = gg >= 0.0 ? cx - cy : sx - sy; /* g1 - g2 or g1 + g2 */
         if (products && fabs(angle) <= FAST_ANGLE && cancels(sx, sy, gg, ss, trace, det)) {
             /* the same in double-double from the radii and the angle */
-            double Sx[2], Sy[2], G1[2], G2[2], SS[2], CC[2], pl, ph, ql, qh, hi, lo;
-            curvature_products_dd(radius[0], radius[1], radius[2], radius[3], Sx, Sy, G1, G2);
+            double Sx[2], Sy[2], G1[2], G2[2], Cx[2], Cy[2], SS[2], CC[2], pl, ph, ql, qh, lo;
+            curvature_products_dd(radius[0], radius[1], radius[2], radius[3], Sx, Sy, G1, G2,
+                                  Cx, Cy);
             for (int k = 0; k < 2; ++k) {
                 Sx[k] *= f;
                 Sy[k] *= f;
                 G1[k] *= f;
                 G2[k] *= f;
+                Cx[k] *= f;
+                Cy[k] *= f;
             }
             sin2_cos2_dd(angle, SS, CC);
             trace = dd_add(Sx[0], Sx[1], Sy[0], Sy[1], &lo);
@@ -551,9 +574,8 @@ curvatures(const double r[4], double angle, double *rx, double *ry, double *rs,
             qh = dd_mul(G1[0], G1[1], G2[0], G2[1], &ql, 0);
             qh = dd_mul(qh, ql, SS[0], SS[1], &ql, 0);
             det = dd_add(ph, pl, qh, ql, &lo);
-            hi = dd_add(G1[0], G1[1], gg >= 0.0 ? -G2[0] : G2[0], gg >= 0.0 ? -G2[1] : G2[1],
-                        &lo);
-            dg = hi;
+            dg = gg >= 0.0 ? dd_add(Cx[0], Cx[1], -Cy[0], -Cy[1], &lo)
+                           : dd_add(Sx[0], Sx[1], -Sy[0], -Sy[1], &lo);
             ss = SS[0];
             cc = CC[0];
             sum = trace * pow2(t) / *pabs;
@@ -567,10 +589,11 @@ curvatures(const double r[4], double angle, double *rx, double *ry, double *rs,
             *ry = det > 0.0 ? det / rho_x : rho_y;
             return HERTZ_LIMIT;
         }
-        /* rho_x lies along atan2(g2 sin 2psi, g1 + g2 cos 2psi)/2; the major
-         * axis (along rho_y) is normal to it. */
+        /* rho_x lies along atan2(g2 sin 2psi, g1 + g2 cos 2psi)/2, with
+         * g1 + g2 cos 2psi = (Sx - Sy) - 2 g2 sin^2 psi; the major axis (along
+         * rho_y) is normal to it. */
         if (with_theta && d != 0.0) {
-            th = 0.5 * atan2(2.0 * g2 * s * c, g1 + g2 * (c - s) * (c + s)) + 0.5 * PI;
+            th = 0.5 * atan2(2.0 * g2 * s * c, (sx - sy) - 2.0 * g2 * ss) + 0.5 * PI;
             th = th > 0.5 * PI ? th - PI : th;
         }
     }
@@ -645,8 +668,8 @@ fast_geometry_body(ptrdiff_t n, const double *const in[HERTZ_NGEOMETRY], stage1 
         r2x = bad == 0.0 ? r2x : 1.0;
         r2y = bad == 0.0 ? r2y : 1.0;
         angle = bad == 0.0 ? angle : 0.0;
-        double sx, sy, g1, g2, pabs;
-        curvature_products(r1x, r1y, r2x, r2y, &sx, &sy, &g1, &g2, &pabs);
+        double sx, sy, g1, g2, cx, cy, pabs;
+        curvature_products(r1x, r1y, r2x, r2y, &sx, &sy, &g1, &g2, &cx, &cy, &pabs);
         double rs = (sx + sy) / pabs;
         double big = fabs(sx) > fabs(sy) ? fabs(sx) : fabs(sy);
         if (!aligned) {
@@ -667,11 +690,13 @@ fast_geometry_body(ptrdiff_t n, const double *const in[HERTZ_NGEOMETRY], stage1 
         else {
             g1 *= f;
             g2 *= f;
+            cx *= f;
+            cy *= f;
             double ss, cc;
             sin2_cos2(angle, &ss, &cc);
             double gg = g1 * g2;
             double trace = sx + sy, det = sx * sy + gg * ss;                    /* (1) */
-            double dg = gg >= 0.0 ? g1 - g2 : g1 + g2;
+            double dg = gg >= 0.0 ? cx - cy : sx - sy; /* g1 - g2 or g1 + g2 */
             double d = sqrt(dg * dg + 4.0 * fabs(gg) * (gg >= 0.0 ? cc : ss));  /* (2) */
             rx = 0.5 * (trace + d);
             ry = d <= 0.5 * trace ? 0.5 * (trace - d) : det / rx;

@@ -1,7 +1,7 @@
 """hertz.contact on hard scenes against mpmath, and its invariants to a few ulp.
 
-Hard scenes: nearly conforming bodies at an angle, a saddle contact whose
-curvature determinant cancels, extreme loads, radii and moduli, curvature
+Hard scenes: nearly conforming bodies at an angle (a ball in a groove, an
+ellipsoid in a cup), a saddle contact whose curvature determinant cancels, extreme loads, radii and moduli, curvature
 ratios near the double range.  Invariants (hypothesis):
 swapping the bodies, turning both by 90 degrees, circles at any angle,
 scaling the load, and the load -> approach -> load and load -> p0 -> load
@@ -62,6 +62,17 @@ HARD = {
     # A body concave across at an angle: rho_x rho_y = Sx Sy + g1 g2 sin^2(psi) is a
     # difference (28x and 1e6x below its terms; the double formula was off by 1.2e-14 and
     # 3.2e-10 in alpha), and so is rho_x + rho_y = Sx + Sy (Sx < 0).
+    # An ellipsoid in a nearly conforming cup at a small angle: g1 and -g2 nearly cancel
+    # (g1 + g2 is taken as Sx - Sy). Before, a was off by 4.6e-11, 7.0e-9 and 2.7e-5.
+    "ellipsoid in a cup conforming to 1e-6 at 1e-8 rad": (
+        (0.01, 0.02, *STEEL), (-0.01000001, -0.02000002, *STEEL), 100.0, 1e-8),
+    "ellipsoid in a cup conforming to 1e-9 at 1e-10 rad": (
+        (0.01, 0.02, *STEEL), (-0.010000000010000001, -0.020000000020000002, *STEEL), 100.0,
+        1e-10),
+    "cup conforming to 1e-12 at 4e-13 rad": (
+        (-0.009400108878343976, -0.14727022485818647, 137693728064.38263, 0.12444941718478869),
+        (0.009400108878332794, 0.14727022485650926, 67234607041.65486, 0.19542136368757212),
+        303.7397198152371, 3.9843224812260383e-13),
     "saddle at an angle, det 28x below its terms": (*SADDLE, 10.0, 1.4756902810579353),
     "saddle at an angle, det 1e6x below its terms": (*SADDLE, 10.0, 1.3608494129183655),
 }
