@@ -909,16 +909,30 @@ place(double x, double e, double *wide, const int fast)
     return x * pow2(fabs(e) <= 1000.0 ? e : 0.0);
 }
 
+/* The given value as vm 2^ve: split here in the fast variants (every value of
+ * the block is then a normal double), read from the arrays in the exact ones. */
+HERTZ_INLINE double
+value_of(const double *restrict vm, const double *restrict ve, const double *restrict v,
+         ptrdiff_t i, double *e, const int fast)
+{
+    if (fast) {
+        return split_normal(v[i], e);
+    }
+    *e = ve[i];
+    return vm[i];
+}
+
 HERTZ_INLINE double
 given_load_body(GIVEN_PARAMETERS, const int fused, const int fast)
 {
     double wide = 0.0;
     for (ptrdiff_t i = 0; i < n; ++i) {
         /* b^3 = cb P = (xh + xl) 2^(3q) */
-        double xl, xh = two_prod(cbm[i], vm[i], &xl, fused);
+        double vme, vmi = value_of(vm, ve, v, i, &vme, fast);
+        double xl, xh = two_prod(cbm[i], vmi, &xl, fused);
         double xe, xm = split_normal(xh, &xe);
         xl *= pow2(-xe); /* xm / xh, exactly */
-        double e = cbe[i] + ve[i] + xe;
+        double e = cbe[i] + vme + xe;
         double q = (e * (1.0 / 3.0) + ROUND) - ROUND, j = e - 3.0 * q;
         q = j < 0.0 ? q - 1.0 : q;
         j = j < 0.0 ? j + 3.0 : j; /* e = 3q + j, j in {0, 1, 2} */
@@ -949,9 +963,10 @@ given_approach_body(GIVEN_PARAMETERS, const int fused, const int fast)
     double wide = 0.0;
     for (ptrdiff_t i = 0; i < n; ++i) {
         /* b^2 = t = delta / cd = (th + tl) 2^(2q); P = t b / cb */
-        double th = vm[i] / cdm[i], pe, pp = two_prod(th, cdm[i], &pe, fused);
-        double tl = ((vm[i] - pp) - pe) / cdm[i];
-        double e = ve[i] - cde[i];
+        double vme, vmi = value_of(vm, ve, v, i, &vme, fast);
+        double th = vmi / cdm[i], pe, pp = two_prod(th, cdm[i], &pe, fused);
+        double tl = ((vmi - pp) - pe) / cdm[i];
+        double e = vme - cde[i];
         double q = (e * 0.5 + ROUND) - ROUND, j = e - 2.0 * q;
         q = j < 0.0 ? q - 1.0 : q;
         j = j < 0.0 ? j + 2.0 : j; /* e = 2q + j, j in {0, 1} */
@@ -978,9 +993,10 @@ given_p0_body(GIVEN_PARAMETERS, const int fused, const int fast)
     double wide = 0.0;
     for (ptrdiff_t i = 0; i < n; ++i) {
         /* b = p0 / cp; P = b^3 / cb */
-        double bh = vm[i] / cpm[i], pe, pp = two_prod(bh, cpm[i], &pe, fused);
-        double bl = ((vm[i] - pp) - pe) / cpm[i];
-        double q = ve[i] - cpe[i];
+        double vme, vmi = value_of(vm, ve, v, i, &vme, fast);
+        double bh = vmi / cpm[i], pe, pp = two_prod(bh, cpm[i], &pe, fused);
+        double bl = ((vmi - pp) - pe) / cpm[i];
+        double q = vme - cpe[i];
         double b2l, b2h = dd_mul(bh, bl, bh, bl, &b2l, fused);
         double ll, lh = dd_mul(b2h, b2l, bh, bl, &ll, fused);
         oa[i] = place(dd_scale(cl[i], bh, bl, fused), q, &wide, fast);
@@ -1021,37 +1037,46 @@ hertz_given_block(ptrdiff_t n, int mode, const double *const c[HERTZ_NCOEFFICIEN
     for (ptrdiff_t i = 0; i < n; ++i) {
         double v = value[i];
         odd = v >= DBL_MIN ? (v <= DBL_MAX ? odd : 1.0) : 1.0;
-        vm[i] = split_normal(v >= DBL_MIN ? (v <= DBL_MAX ? v : 1.0) : 1.0, &ve[i]);
     }
     if (odd != 0.0) {
         for (ptrdiff_t i = 0; i < n; ++i) {
-            double v = value[i];
-            if (!(v >= DBL_MIN && v <= DBL_MAX)) {
-                if (!(v >= 0.0 && v <= DBL_MAX)) {
-                    *bad = i;
-                    return HERTZ_BAD_VALUE;
-                }
-                hertz_scaled s = split(v > 0.0 ? v : 1.0); /* subnormal; zero is set below */
-                vm[i] = s.m;
-                ve[i] = s.e;
+            if (!(value[i] >= 0.0 && value[i] <= DBL_MAX)) {
+                *bad = i;
+                return HERTZ_BAD_VALUE;
             }
         }
     }
 #define GIVEN_ARGUMENTS n, c[0], c[1], c[2], c[3], c[4], c[5], c[6], c[7], c[8], vm, ve, value, \
                         out[0], out[1], out[2], out[3], out[4], out[5]
-    int fused = hertz_fma_available();
-    if (mode == HERTZ_GIVEN_LOAD) {
-        if ((fused ? given_load_fast_fused : given_load_fast)(GIVEN_ARGUMENTS) != 0.0) {
+    /* The fast variant splits the values itself; the exact one, for a block
+     * with an odd value or an output beyond 2^+-1000, reads them split here. */
+    int fused = hertz_fma_available(), exact = odd != 0.0;
+    if (!exact) {
+        double wide;
+        if (mode == HERTZ_GIVEN_LOAD) {
+            wide = (fused ? given_load_fast_fused : given_load_fast)(GIVEN_ARGUMENTS);
+        }
+        else if (mode == HERTZ_GIVEN_APPROACH) {
+            wide = (fused ? given_approach_fast_fused : given_approach_fast)(GIVEN_ARGUMENTS);
+        }
+        else {
+            wide = (fused ? given_p0_fast_fused : given_p0_fast)(GIVEN_ARGUMENTS);
+        }
+        exact = wide != 0.0;
+    }
+    if (exact) {
+        for (ptrdiff_t i = 0; i < n; ++i) {
+            hertz_scaled sv = split(value[i] > 0.0 ? value[i] : 1.0); /* zero is set below */
+            vm[i] = sv.m;
+            ve[i] = sv.e;
+        }
+        if (mode == HERTZ_GIVEN_LOAD) {
             given_load_exact(GIVEN_ARGUMENTS);
         }
-    }
-    else if (mode == HERTZ_GIVEN_APPROACH) {
-        if ((fused ? given_approach_fast_fused : given_approach_fast)(GIVEN_ARGUMENTS) != 0.0) {
+        else if (mode == HERTZ_GIVEN_APPROACH) {
             given_approach_exact(GIVEN_ARGUMENTS);
         }
-    }
-    else {
-        if ((fused ? given_p0_fast_fused : given_p0_fast)(GIVEN_ARGUMENTS) != 0.0) {
+        else {
             given_p0_exact(GIVEN_ARGUMENTS);
         }
     }
