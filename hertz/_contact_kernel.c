@@ -333,65 +333,66 @@ inverse_cube_root(double m, double j)
  * For radii within 2^+-RADIUS_RANGE nothing overflows or underflows. */
 #define RADIUS_RANGE 240
 
+/* The six quantities of curvature_products, in the order Sx, Sy, g1, g2, Cx,
+ * Cy, are sign (p[k] + q[k]) (a[k] b[k]), each of p, q, a, b a radius, 1 or 0.
+ * Returns the sign of r1x r1y r2x r2y; *pabs = Pi. */
+HERTZ_INLINE double
+curvature_terms(double r1x, double r1y, double r2x, double r2y, double p[6], double q[6],
+                double a[6], double b[6], double *pabs)
+{
+    double f1x = fabs(r1x) == INFINITY ? 0.0 : r1x, f1y = fabs(r1y) == INFINITY ? 0.0 : r1y;
+    double f2x = fabs(r2x) == INFINITY ? 0.0 : r2x, f2y = fabs(r2y) == INFINITY ? 0.0 : r2y;
+    double u1x = f1x == 0.0 ? 1.0 : r1x, u1y = f1y == 0.0 ? 1.0 : r1y;
+    double u2x = f2x == 0.0 ? 1.0 : r2x, u2y = f2y == 0.0 ? 1.0 : r2y;
+    /* w = 1 for a finite radius, 0 for an infinite one: 1/r = w/u */
+    double w1x = f1x == 0.0 ? 0.0 : 1.0, w1y = f1y == 0.0 ? 0.0 : 1.0;
+    double w2x = f2x == 0.0 ? 0.0 : 1.0, w2y = f2y == 0.0 ? 0.0 : 1.0;
+    const double sum[6][2] = {{w1x * u2x, w2x * u1x}, {w1y * u2y, w2y * u1y},
+                              {w1x * u1y, -(w1y * u1x)}, {w2x * u2y, -(w2y * u2x)},
+                              {w1x * u2y, w2y * u1x}, {w1y * u2x, w2x * u1y}};
+    const double product[6][2] = {{u1y, u2y}, {u1x, u2x}, {u2x, u2y},
+                                  {u1x, u1y}, {u1y, u2x}, {u1x, u2y}};
+    for (int k = 0; k < 6; ++k) {
+        p[k] = sum[k][0];
+        q[k] = sum[k][1];
+        a[k] = product[k][0];
+        b[k] = product[k][1];
+    }
+    double pi = (u1x * u1y) * (u2x * u2y);
+    *pabs = fabs(pi);
+    return pi < 0.0 ? -1.0 : 1.0;
+}
+
 static inline void
 curvature_products(double r1x, double r1y, double r2x, double r2y, double *sx, double *sy,
                    double *g1, double *g2, double *cx, double *cy, double *pabs)
 {
-    double f1x = fabs(r1x) == INFINITY ? 0.0 : r1x, f1y = fabs(r1y) == INFINITY ? 0.0 : r1y;
-    double f2x = fabs(r2x) == INFINITY ? 0.0 : r2x, f2y = fabs(r2y) == INFINITY ? 0.0 : r2y;
-    double u1x = f1x == 0.0 ? 1.0 : r1x, u1y = f1y == 0.0 ? 1.0 : r1y;
-    double u2x = f2x == 0.0 ? 1.0 : r2x, u2y = f2y == 0.0 ? 1.0 : r2y;
-    double q1 = u1x * u1y, q2 = u2x * u2y, pi = q1 * q2;
-    double sign = pi < 0.0 ? -1.0 : 1.0;
-    double nsx = (f1x == 0.0 ? 0.0 : u2x) + (f2x == 0.0 ? 0.0 : u1x);
-    double nsy = (f1y == 0.0 ? 0.0 : u2y) + (f2y == 0.0 ? 0.0 : u1y);
-    double ng1 = (f1x == 0.0 ? 0.0 : u1y) - (f1y == 0.0 ? 0.0 : u1x);
-    double ng2 = (f2x == 0.0 ? 0.0 : u2y) - (f2y == 0.0 ? 0.0 : u2x);
-    *sx = sign * nsx * (u1y * u2y);
-    *sy = sign * nsy * (u1x * u2x);
-    *g1 = sign * ng1 * q2;
-    *g2 = sign * ng2 * q1;
-    double ncx = (f1x == 0.0 ? 0.0 : u2y) + (f2y == 0.0 ? 0.0 : u1x);
-    double ncy = (f1y == 0.0 ? 0.0 : u2x) + (f2x == 0.0 ? 0.0 : u1y);
-    *cx = sign * ncx * (u1y * u2x);
-    *cy = sign * ncy * (u1x * u2y);
-    *pabs = fabs(pi);
+    double p[6], q[6], a[6], b[6], v[6];
+    double sign = curvature_terms(r1x, r1y, r2x, r2y, p, q, a, b, pabs);
+    for (int k = 0; k < 6; ++k) {
+        v[k] = sign * (p[k] + q[k]) * (a[k] * b[k]);
+    }
+    *sx = v[0];
+    *sy = v[1];
+    *g1 = v[2];
+    *g2 = v[3];
+    *cx = v[4];
+    *cy = v[5];
 }
 
-/* curvature_products as double-doubles (hi, lo pairs): the sums and products
- * of radii exact, their products to 2^-104.  Symmetric in the bodies as the
- * double version is. */
+/* curvature_products as double-doubles, v[k] = {hi, lo} in the same order:
+ * the sums and products of radii exact, their products to 2^-104.  Symmetric
+ * in the bodies as the double version is. */
 static void
-curvature_products_dd(double r1x, double r1y, double r2x, double r2y, double sx[2],
-                      double sy[2], double g1[2], double g2[2], double cx[2], double cy[2])
+curvature_products_dd(double r1x, double r1y, double r2x, double r2y, double v[6][2])
 {
-    double f1x = fabs(r1x) == INFINITY ? 0.0 : r1x, f1y = fabs(r1y) == INFINITY ? 0.0 : r1y;
-    double f2x = fabs(r2x) == INFINITY ? 0.0 : r2x, f2y = fabs(r2y) == INFINITY ? 0.0 : r2y;
-    double u1x = f1x == 0.0 ? 1.0 : r1x, u1y = f1y == 0.0 ? 1.0 : r1y;
-    double u2x = f2x == 0.0 ? 1.0 : r2x, u2y = f2y == 0.0 ? 1.0 : r2y;
-    double sign = (u1x * u1y) * (u2x * u2y) < 0.0 ? -1.0 : 1.0;
-    double q1l, q1 = two_prod(u1x, u1y, &q1l, 0), q2l, q2 = two_prod(u2x, u2y, &q2l, 0);
-    double pxl, px = two_prod(u1x, u2x, &pxl, 0), pyl, py = two_prod(u1y, u2y, &pyl, 0);
-    double nl, nh;
-    nh = two_sum(f1x == 0.0 ? 0.0 : u2x, f2x == 0.0 ? 0.0 : u1x, &nl);
-    sx[0] = sign * dd_mul(nh, nl, py, pyl, &sx[1], 0);
-    nh = two_sum(f1y == 0.0 ? 0.0 : u2y, f2y == 0.0 ? 0.0 : u1y, &nl);
-    sy[0] = sign * dd_mul(nh, nl, px, pxl, &sy[1], 0);
-    nh = two_sum(f1x == 0.0 ? 0.0 : u1y, -(f1y == 0.0 ? 0.0 : u1x), &nl);
-    g1[0] = sign * dd_mul(nh, nl, q2, q2l, &g1[1], 0);
-    nh = two_sum(f2x == 0.0 ? 0.0 : u2y, -(f2y == 0.0 ? 0.0 : u2x), &nl);
-    g2[0] = sign * dd_mul(nh, nl, q1, q1l, &g2[1], 0);
-    double cxl, cxp = two_prod(u1y, u2x, &cxl, 0), cyl, cyp = two_prod(u1x, u2y, &cyl, 0);
-    nh = two_sum(f1x == 0.0 ? 0.0 : u2y, f2y == 0.0 ? 0.0 : u1x, &nl);
-    cx[0] = sign * dd_mul(nh, nl, cxp, cxl, &cx[1], 0);
-    nh = two_sum(f1y == 0.0 ? 0.0 : u2x, f2x == 0.0 ? 0.0 : u1y, &nl);
-    cy[0] = sign * dd_mul(nh, nl, cyp, cyl, &cy[1], 0);
-    sx[1] *= sign;
-    sy[1] *= sign;
-    g1[1] *= sign;
-    g2[1] *= sign;
-    cx[1] *= sign;
-    cy[1] *= sign;
+    double p[6], q[6], a[6], b[6], pabs;
+    double sign = curvature_terms(r1x, r1y, r2x, r2y, p, q, a, b, &pabs);
+    for (int k = 0; k < 6; ++k) {
+        double nl, nh = two_sum(p[k], q[k], &nl), ml, mh = two_prod(a[k], b[k], &ml, 0);
+        v[k][0] = sign * dd_mul(nh, nl, mh, ml, &v[k][1], 0);
+        v[k][1] *= sign;
+    }
 }
 
 /* Whether rho_x + rho_y or rho_x rho_y, eq. (1), loses more than one bit to
@@ -557,17 +558,13 @@ curvatures(const double r[4], double angle, double *rx, double *ry, double *rs,
         double dg = gg >= 0.0 ? cx - cy : sx - sy; /* g1 - g2 or g1 + g2 */
         if (products && fabs(angle) <= FAST_ANGLE && cancels(sx, sy, gg, ss, trace, det)) {
             /* the same in double-double from the radii and the angle */
-            double Sx[2], Sy[2], G1[2], G2[2], Cx[2], Cy[2], SS[2], CC[2], pl, ph, ql, qh, lo;
-            curvature_products_dd(radius[0], radius[1], radius[2], radius[3], Sx, Sy, G1, G2,
-                                  Cx, Cy);
-            for (int k = 0; k < 2; ++k) {
-                Sx[k] *= f;
-                Sy[k] *= f;
-                G1[k] *= f;
-                G2[k] *= f;
-                Cx[k] *= f;
-                Cy[k] *= f;
+            double v[6][2], SS[2], CC[2], pl, ph, ql, qh, lo;
+            curvature_products_dd(radius[0], radius[1], radius[2], radius[3], v);
+            for (int k = 0; k < 6; ++k) {
+                v[k][0] *= f;
+                v[k][1] *= f;
             }
+            const double *Sx = v[0], *Sy = v[1], *G1 = v[2], *G2 = v[3], *Cx = v[4], *Cy = v[5];
             sin2_cos2_dd(angle, SS, CC);
             trace = dd_add(Sx[0], Sx[1], Sy[0], Sy[1], &lo);
             ph = dd_mul(Sx[0], Sx[1], Sy[0], Sy[1], &pl, 0);
