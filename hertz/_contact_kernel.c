@@ -50,8 +50,9 @@
  * the common case (radii beyond 2^+-240, moduli beyond [2^-900, 2^1000],
  * |angle| > 1e5, no valid contact) are flagged and done by the scalar code,
  * which also names errors; zero, subnormal and bad values and outputs beyond
- * 2^+-1000 make their block take the exact variants of the load stage.  A single contact goes through the same
- * block code (n = 1), so it has the same bits as in an array.
+ * 2^+-1000 make their block take the exact variants of the load stage.  A
+ * single contact goes through the same block code (n = 1), so it has the same
+ * bits as in an array.
  */
 #include <float.h>
 #include <math.h>
@@ -430,23 +431,33 @@ pair_difference(double rx, double ry)
     return 1.0 / rx - 1.0 / ry;
 }
 
-/* E* = E_lo / (c_lo + c_hi E_lo / E_hi) with E_lo <= E_hi, c = 1 - nu^2, as
- * em 2^ee (E_lo = em 2^ee): one division, for moduli in [2^-900, 2^1000]
- * (where no product below leaves the normal range).  Symmetric in the bodies. */
-HERTZ_INLINE double
-modulus_mantissa(double e1, double nu1, double e2, double nu2, double *ee)
+/* The moduli ordered so that E_lo <= E_hi (ties by c = 1 - nu^2), which makes
+ * E* symmetric in the bodies. */
+HERTZ_INLINE void
+order_moduli(double e1, double nu1, double e2, double nu2, double *elo, double *ehi,
+             double *clo, double *chi)
 {
     double c1 = (1.0 - nu1) * (1.0 + nu1), c2 = (1.0 - nu2) * (1.0 + nu2);
     double swap = e1 > e2 ? 1.0 : (e1 == e2 ? (c1 > c2 ? 1.0 : 0.0) : 0.0);
-    double elo = swap != 0.0 ? e2 : e1, ehi = swap != 0.0 ? e1 : e2;
-    double clo = swap != 0.0 ? c2 : c1, chi = swap != 0.0 ? c1 : c2;
+    *elo = swap != 0.0 ? e2 : e1;
+    *ehi = swap != 0.0 ? e1 : e2;
+    *clo = swap != 0.0 ? c2 : c1;
+    *chi = swap != 0.0 ? c1 : c2;
+}
+
+/* E* = E_lo / (c_lo + c_hi E_lo / E_hi) as em 2^ee (E_lo = em 2^ee) with one
+ * division, for moduli in [2^-900, 2^1000] (where no product below leaves the
+ * normal range). */
+HERTZ_INLINE double
+modulus_mantissa(double elo, double ehi, double clo, double chi, double *ee)
+{
     double em = split_normal(elo, ee);
     return em * ehi / (clo * ehi + chi * elo);
 }
 
 /* Validate the moduli and return E* as a scaled value:
- * 1/E* = (1 - nu1^2)/E1 + (1 - nu2^2)/E2, taken as E* = E_lo / (c_lo + c_hi
- * E_lo/E_hi) with E_lo <= E_hi (symmetric in the bodies; E_lo may be
+ * 1/E* = (1 - nu1^2)/E1 + (1 - nu2^2)/E2, with the formula of the block code
+ * where it applies, else as E_lo / (c_lo + c_hi E_lo/E_hi) (E_lo may be
  * subnormal). */
 static int
 reduced_modulus(double e1, double nu1, double e2, double nu2, hertz_scaled *e_star)
@@ -463,13 +474,11 @@ reduced_modulus(double e1, double nu1, double e2, double nu2, hertz_scaled *e_st
     if (!(nu2 > -1.0 && nu2 <= 0.5)) {
         return 1 + HERTZ_NU2;
     }
-    double c1 = (1.0 - nu1) * (1.0 + nu1), c2 = (1.0 - nu2) * (1.0 + nu2);
-    int swap = e1 > e2 || (e1 == e2 && c1 > c2);
-    double elo = swap ? e2 : e1, ehi = swap ? e1 : e2;
-    double clo = swap ? c2 : c1, chi = swap ? c1 : c2;
+    double elo, ehi, clo, chi;
+    order_moduli(e1, nu1, e2, nu2, &elo, &ehi, &clo, &chi);
     hertz_scaled s;
     if (elo >= 0x1p-900 && ehi <= 0x1p1000) {
-        s.m = modulus_mantissa(e1, nu1, e2, nu2, &s.e); /* as in fast_geometry */
+        s.m = modulus_mantissa(elo, ehi, clo, chi, &s.e); /* as in fast_moduli */
     }
     else {
         s = split(elo);
@@ -541,9 +550,14 @@ curvatures(const double r[4], double angle, double *rx, double *ry, double *rs,
     cx *= f;
     cy *= f;
     *e = t - shift; /* true curvature = normalised one * 2^e */
-    double s = sin(angle), c = cos(angle), ss = s * s, cc = c * c;
+    double ss, cc;
     if (fabs(angle) <= FAST_ANGLE) {
         sin2_cos2(angle, &ss, &cc); /* as in fast_geometry: the same bits */
+    }
+    else {
+        double s = sin(angle), c = cos(angle);
+        ss = s * s;
+        cc = c * c;
     }
     double rho_x, rho_y, th = 0.0;
     if (ss == 0.0) {
@@ -590,6 +604,7 @@ curvatures(const double r[4], double angle, double *rx, double *ry, double *rs,
          * g1 + g2 cos 2psi = (Sx - Sy) - 2 g2 sin^2 psi; the major axis (along
          * rho_y) is normal to it. */
         if (with_theta && d != 0.0) {
+            double s = sin(angle), c = cos(angle);
             th = 0.5 * atan2(2.0 * g2 * s * c, (sx - sy) - 2.0 * g2 * ss) + 0.5 * PI;
             th = th > 0.5 * PI ? th - PI : th;
         }
@@ -730,7 +745,9 @@ fast_modulus(double e1, double nu1, double e2, double nu2, double *ee, double *b
     b = nu1 > -1.0 ? (nu1 <= 0.5 ? b : 1.0) : 1.0;
     b = nu2 > -1.0 ? (nu2 <= 0.5 ? b : 1.0) : 1.0;
     *bad = b;
-    return modulus_mantissa(e1, nu1, e2, nu2, ee); /* garbage where b = 1, never used */
+    double elo, ehi, clo, chi;
+    order_moduli(e1, nu1, e2, nu2, &elo, &ehi, &clo, &chi);
+    return modulus_mantissa(elo, ehi, clo, chi, ee); /* garbage where b = 1, never used */
 }
 
 /* E* per element into s (flagging elements in `other`), computed once for a

@@ -31,13 +31,13 @@
 #error "the table is evaluated as a degree-8 polynomial, 30 doubles a piece"
 #endif
 
-/* Horner in z on a stored row, then the two-part leading coefficient. */
 #define TABLE_TOP 0x1p64 /* 2^TABLE_BINADES */
 #define Z_SCALE ((double)(2 << TABLE_SPLIT_BITS))
 #if TABLE_BINADES != 64
 #error "TABLE_TOP is 2^TABLE_BINADES"
 #endif
 
+/* Horner in z on a stored row, then the two-part leading coefficient. */
 static inline double
 table_poly(const double *c, double z)
 {

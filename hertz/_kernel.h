@@ -9,9 +9,10 @@
 #include <stddef.h>
 
 /* With GCC or Clang on x86-64 Linux, block functions are also compiled for
- * AVX-512 (x86-64-v4) and AVX2 and the best one is chosen at load time; elementwise operations
- * round the same way at any vector width (and -ffp-contract=off forbids
- * fused multiply-adds), so both give the same bits.  -DHERTZ_PLAIN builds
+ * AVX-512 (x86-64-v4) and AVX2 and the best one is chosen at load time;
+ * elementwise operations round the same way at any vector width (and
+ * -ffp-contract=off forbids contracting into fused multiply-adds), so all
+ * give the same bits.  -DHERTZ_PLAIN builds
  * the plain version only (tests/test_kernel_builds.py compares them). */
 #if defined(__GNUC__) && defined(__x86_64__) && defined(__linux__) && !defined(HERTZ_PLAIN)
 #if (defined(__clang__) && __clang_major__ >= 14) || (!defined(__clang__) && __GNUC__ >= 11)
@@ -58,8 +59,8 @@ ptrdiff_t hertz_ellipse_table(const double *alpha, ptrdiff_t n, double *lam, dou
 
 /* 1 where fma() is a single instruction of this processor (x86-64-v3 and up
  * with GCC 11+ or Clang 14+ on Linux, aarch64), 0 elsewhere and in a
- * HERTZ_PLAIN build: exact products then use fma() instead of Dekker's splitting (the
- * same bits either way). */
+ * HERTZ_PLAIN build: exact products then use fma() instead of Dekker's
+ * splitting (the same bits either way). */
 int hertz_fma_available(void);
 
 /* Whether the AVX2 start-only path is used; enable = 0 or 1 switches it off
