@@ -153,8 +153,10 @@ def main():
         "",
         "/* lambda, K, E on piece e 2^TABLE_SPLIT_BITS + k of alpha in [1, 2^TABLE_BINADES):",
         "   c0_hi + (c0_lo + z (c1 + ... + z c_d)), see the script.  Largest relative error",
-        f"   of the double evaluation at both ends and {INNER_CHECKS} inner points of every piece, in",
-        "   units of 2^-53: " + ", ".join(f"{n} {e:.2f}" for n, e in zip(NAMES, err)) + ". */",
+        f"   of the double evaluation at both ends and {INNER_CHECKS} inner points of every"
+        " piece, in",
+        "   units of 2^-53: "
+        + ", ".join(f"{n} {e:.2f}" for n, e in zip(NAMES, err, strict=True)) + ". */",
         f"static const double ELLIPSE_TABLE[{count}][3][{TABLE_STRIDE}] = {{",
     ]
     for rows in table:
@@ -162,7 +164,7 @@ def main():
             "{" + ", ".join(f"{v:.17g}" for v in row) + "}" for row in rows) + "},")
     lines += ["};", "", "#endif", ""]
     OUT.write_text("\n".join(lines))
-    print(f"wrote {OUT}; largest errors (2^-53): {dict(zip(NAMES, err))}")
+    print(f"wrote {OUT}; largest errors (2^-53): {dict(zip(NAMES, err, strict=True))}")
 
 
 if __name__ == "__main__":
