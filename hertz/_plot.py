@@ -1,16 +1,13 @@
 """The stress picture of the ``hertz --plot`` command (needs matplotlib, the plot extra).
 
-Imported only when a figure is asked for: ``import hertz`` never loads matplotlib.
+Imported only when a figure is asked for: ``import hertz`` never loads matplotlib, and
+this module imports it only in :func:`stress_figure`, so that it imports (and pytest's
+doctest collection of hertz/ passes) without the plot extra.
 """
 
 from __future__ import annotations
 
-import matplotlib
-
-matplotlib.use("Agg")  # files only; no display needed
-
-import matplotlib.pyplot as plt  # noqa: E402
-import numpy as np  # noqa: E402
+import numpy as np
 
 
 def von_mises(tensor: np.ndarray) -> np.ndarray:
@@ -29,6 +26,11 @@ def stress_figure(c, body: int = 1, title: str = "", n: int = 121):
     marked.  Right: the principal stresses, tau1 and von Mises along the z
     axis, over p0.
     """
+    import matplotlib
+
+    matplotlib.use("Agg")  # files only; no display needed
+    import matplotlib.pyplot as plt
+
     if np.ndim(c.a) != 0:
         raise ValueError("the stress figure is for one contact (scalar inputs)")
     m = c.subsurface(body)
