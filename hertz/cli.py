@@ -90,7 +90,7 @@ def _parser() -> argparse.ArgumentParser:
                         "yields (von Mises and Tresca)")
     p.add_argument("--plot", metavar="FILE.png",
                    help="draw the von Mises stress below the contact (needs matplotlib: "
-                        "pip install 'hertz[plot]')")
+                        "pip install 'hertz-contact[plot]')")
     p.add_argument("--json", action="store_true", help="print one JSON object instead of a table")
     return p
 
@@ -321,7 +321,7 @@ def _plot(c, scene, path: str) -> None:
         from ._plot import stress_figure
     except ImportError as exc:
         raise _UsageError(f"--plot needs matplotlib ({exc.name} is not installed): "
-                          "pip install 'hertz[plot]'") from None
+                          "pip install 'hertz-contact[plot]'") from None
     try:
         stress_figure(c, title=scene["name"]).savefig(path, dpi=130)
     except (OSError, ValueError) as exc:

@@ -45,7 +45,7 @@ def test_a_clang_build_gives_the_same_bits(tmp_path):
 @needs_source_tree
 def test_the_sdist_holds_the_sources_tests_and_geometry(tmp_path):
     setup_py("egg_info", "--egg-base", str(tmp_path), tmp_path=tmp_path)
-    listed = set((tmp_path / "hertz.egg-info" / "SOURCES.txt").read_text().split("\n"))
+    listed = set((tmp_path / "hertz_contact.egg-info" / "SOURCES.txt").read_text().split("\n"))
     wanted = {"README.md", "pyproject.toml", "setup.py", "MANIFEST.in"}
     for pattern in ("hertz/*.py", "hertz/*.c", "hertz/*.h", "fem_validation/*.py",
                     "meshes/*.geo", "tests/*.py", "tests/data/*", "benchmarks/*.py"):
@@ -58,6 +58,23 @@ def test_the_sdist_holds_the_sources_tests_and_geometry(tmp_path):
     unwanted = [f for f in listed if f.endswith((".so", ".pyd", ".pyc", ".o"))
                 or f.startswith(("build/", "dist/", "fem_out/", "out/"))]
     assert unwanted == []
+
+
+@needs_source_tree
+def test_the_distribution_is_hertz_contact_with_the_import_name_and_command_hertz(tmp_path):
+    """``hertz`` on the package index is another project (a units package that also installs
+    an import package ``hertz``): ours is ``hertz-contact``, importing as ``hertz`` with the
+    ``hertz`` command, at the version ``hertz.__version__`` says."""
+    import hertz
+
+    setup_py("egg_info", "--egg-base", str(tmp_path), tmp_path=tmp_path)
+    info = tmp_path / "hertz_contact.egg-info"
+    fields = dict(line.split(": ", 1) for line in (info / "PKG-INFO").read_text().splitlines()
+                  if line[:1].isalpha() and ": " in line)
+    assert fields["Name"] == "hertz-contact"
+    assert fields["Version"] == hertz.__version__
+    assert "hertz = hertz.cli:main" in (info / "entry_points.txt").read_text()
+    assert (info / "top_level.txt").read_text().split() == ["fem_validation", "hertz"]
 
 
 @needs_source_tree
