@@ -25,20 +25,25 @@ A scene file holds the same names as the options::
     E = 210e9
     nu = 0.3
 
-Errors (bad values, a missing file, no Hertz contact, output that cannot
-be written) print one line on stderr and exit with status 2.  ``--json``
-prints strict JSON: a value that overflows a double is ``null``.
+Errors (bad values, a missing or oversized file, no Hertz contact, output
+that cannot be written) print one line on stderr and exit with status 2,
+never a traceback.  ``--json`` prints strict JSON: a value that overflows a
+double is ``null``.
 """
 
 from __future__ import annotations
 
 import argparse
+import io
 import json
 import math
 import os
 import sys
 import tomllib
 
+import numpy as np
+
+from . import __version__
 from ._contact import Body, contact
 
 DEFAULT_SCENE = {
@@ -50,15 +55,29 @@ DEFAULT_SCENE = {
 }
 
 _BODY_KEYS = ("Rx", "Ry", "E", "nu")
+#: Options that change the scene (the others only add output).
+_SCENE_OPTIONS = ("r1x", "r1y", "e1", "nu1", "r2x", "r2y", "e2", "nu2", "load", "approach",
+                  "angle_deg")
+#: A scene file is a few lines; refusing big ones keeps ``--scene /dev/zero`` from
+#: filling the memory.
+_MAX_SCENE_BYTES = 1 << 20
+_PLOT_EXTRA = "pip install 'hertz-contact[plot]'"
 
 
 class _Parser(argparse.ArgumentParser):
     def error(self, message):  # one line, status 2
         raise _UsageError(message)
 
+    def print_help(self, file=None):  # a help that cannot be written is an error too
+        _write(self.format_help().rstrip("\n"), file)
+
 
 class _UsageError(Exception):
     pass
+
+
+class _ReaderLeftError(Exception):
+    """The reader of stdout went away (``hertz | head``): stop quietly."""
 
 
 def _number(text: str) -> float:
@@ -80,7 +99,7 @@ def _parser() -> argparse.ArgumentParser:
         g.add_argument(f"--e{i}", type=_number, metavar="PA", help=f"body {i} Young's modulus [Pa]")
         g.add_argument(f"--nu{i}", type=_number, metavar="NU", help=f"body {i} Poisson's ratio [-]")
     load = p.add_mutually_exclusive_group()
-    load.add_argument("--load", type=_number, metavar="N", help="normal force [N]")
+    load.add_argument("--load", type=_number, metavar="N", help="normal force [N], >= 0")
     load.add_argument("--approach", type=_number, metavar="M",
                       help="approach of the bodies [m] (the load is computed)")
     p.add_argument("--angle-deg", type=_number, metavar="DEG",
@@ -89,33 +108,52 @@ def _parser() -> argparse.ArgumentParser:
                    help="yield strength of both bodies [Pa]: adds the load at which each first "
                         "yields (von Mises and Tresca)")
     p.add_argument("--plot", metavar="FILE.png",
-                   help="draw the von Mises stress below the contact (needs matplotlib: "
-                        "pip install 'hertz-contact[plot]')")
+                   help="draw the von Mises stress below the contact into FILE, in the format "
+                        "its suffix names (.png, .pdf, .svg, ...; needs matplotlib: "
+                        f"{_PLOT_EXTRA})")
     p.add_argument("--json", action="store_true", help="print one JSON object instead of a table")
+    p.add_argument("--version", action="version",
+                   version=f"hertz {__version__} (distribution hertz-contact)")
     return p
+
+
+# --- the scene file --------------------------------------------
+
+
+
+
+
 
 
 def _read_scene(path: str) -> dict:
     try:
         with open(path, "rb") as f:
-            scene = tomllib.load(f)
+            data = f.read(_MAX_SCENE_BYTES + 1)
     except OSError as exc:
-        raise _UsageError(f"cannot read scene file {path!r}: {exc.strerror}") from None
+        raise _UsageError(f"cannot read scene file {path!r}: {exc.strerror or exc}") from None
+    if len(data) > _MAX_SCENE_BYTES:
+        raise _UsageError(f"scene file {path!r} is larger than {_MAX_SCENE_BYTES} bytes "
+                          "(a scene is a few lines)")
+    try:
+        scene = tomllib.loads(data.decode("utf-8"))
     except (tomllib.TOMLDecodeError, UnicodeDecodeError) as exc:
         raise _UsageError(f"scene file {path!r} is not valid TOML: {exc}") from None
     except RecursionError:
         raise _UsageError(f"scene file {path!r} is nested too deeply to read") from None
-    merged = {k: (dict(v) if isinstance(v, dict) else v) for k, v in DEFAULT_SCENE.items()}
+    except ValueError as exc:  # an integer of more than 4300 digits
+        raise _UsageError(f"scene file {path!r} cannot be read: {exc}") from None
+    merged = _copy(DEFAULT_SCENE)
     merged["name"] = path
     for key, value in scene.items():
         if key in ("body1", "body2"):
             if not isinstance(value, dict):
-                raise _UsageError(f"scene file: [{key}] must be a table")
+                raise _UsageError(f"scene file: [{key}] must be a table, got {_kind(value)}")
             unknown = set(value) - set(_BODY_KEYS)
             if unknown:
-                names = ", ".join(sorted(unknown))
-                raise _UsageError(f"scene file: unknown key(s) in [{key}]: {names}")
-            merged[key].update(value)
+                names = ", ".join(_show(name) for name in sorted(unknown))
+                raise _UsageError(f"scene file: unknown key(s) in [{key}]: {names} "
+                                  f"(allowed: {', '.join(_BODY_KEYS)})")
+            merged[key].update({k: _scalar(v, f"{key}.{k}") for k, v in value.items()})
         elif key in ("load", "approach", "angle_deg"):
             merged[key] = _scalar(value, key)
         elif key == "name":
@@ -123,7 +161,9 @@ def _read_scene(path: str) -> dict:
                 raise _UsageError(f"scene file: name must be a string, got {_kind(value)}")
             merged[key] = value
         else:
-            raise _UsageError(f"scene file: unknown key {key!r}")
+            allowed = "name, load, approach, angle_deg"
+            raise _UsageError(f"scene file: unknown key {_show(key)} (allowed: {allowed}, "
+                              "[body1], [body2])")
     if "approach" in scene:
         if "load" in scene:
             raise _UsageError("scene file: give one of load and approach, not both")
@@ -131,25 +171,42 @@ def _read_scene(path: str) -> dict:
     return merged
 
 
+def _copy(scene: dict) -> dict:
+    return {k: (dict(v) if isinstance(v, dict) else v) for k, v in scene.items()}
+
+
 def _kind(value) -> str:
     return {list: "an array", dict: "a table"}.get(type(value), type(value).__name__)
+
+
+def _show(value, limit: int = 80) -> str:
+    """repr(value), shortened; never an exception (deep nesting, huge integers)."""
+    try:
+        text = repr(value)
+    except (RecursionError, ValueError):
+        text = f"<{_kind(value)}>"
+    return text if len(text) <= limit else text[:limit - 3] + "..."
 
 
 def _scalar(value, name: str) -> float:
     """A number from a scene file: an int or float, or a string that spells one ("inf")."""
     if isinstance(value, bool) or not isinstance(value, (int, float, str)):
-        raise _UsageError(f"{name} must be a number, got {_kind(value)}: {value!r}"[:200])
+        raise _UsageError(f"{name} must be a number, got {_kind(value)}: {_show(value)}")
     if isinstance(value, str):
         try:
             return float(value)
         except ValueError:
-            raise _UsageError(f"{name} must be a number, got {value!r}") from None
-    return float(value)
+            raise _UsageError(f"{name} must be a number, got {_show(value)}") from None
+    try:
+        return float(value)
+    except OverflowError:  # an integer beyond the largest double
+        digits = math.floor(math.log10(abs(value))) + 1
+        raise _UsageError(f"{name} must be a number a double can hold (|x| < 1.8e308), got "
+                          f"an integer of {digits} digits") from None
 
 
 def _scene(args) -> dict:
-    scene = _read_scene(args.scene) if args.scene else {
-        k: (dict(v) if isinstance(v, dict) else v) for k, v in DEFAULT_SCENE.items()}
+    scene = _read_scene(args.scene) if args.scene else _copy(DEFAULT_SCENE)
     for i in (1, 2):
         for key, opt in zip(_BODY_KEYS, (f"r{i}x", f"r{i}y", f"e{i}", f"nu{i}"), strict=True):
             value = getattr(args, opt)
@@ -163,11 +220,12 @@ def _scene(args) -> dict:
         scene.pop("load", None)
     if args.angle_deg is not None:
         scene["angle_deg"] = args.angle_deg
-    if any(vars(args)[k] is not None for k in vars(args) if k not in ("scene", "json")) \
-            and not args.scene:
+    if not args.scene and any(getattr(args, opt) is not None for opt in _SCENE_OPTIONS):
         scene["name"] = "custom scene"
     return scene
 
+
+# --- solving -------------------------------------------------------------------------------
 
 def _body(spec: dict, name: str) -> Body:
     values = {key: _scalar(spec[key], f"{name}.{key}") for key in _BODY_KEYS}
@@ -179,18 +237,73 @@ def _body(spec: dict, name: str) -> Body:
 
 def _solve(scene: dict):
     body1, body2 = _body(scene["body1"], "body1"), _body(scene["body2"], "body2")
-    angle = scene.get("angle_deg", 0.0)
+    angle = math.radians(scene.get("angle_deg", 0.0))
     kwargs = {"approach": scene["approach"]} if "approach" in scene else {"load": scene["load"]}
     try:
-        return body1, body2, contact(body1, body2, angle=math.radians(angle), **kwargs)
+        return body1, body2, contact(body1, body2, angle=angle, **kwargs)
     except TypeError as exc:
         raise _UsageError(str(exc)) from None
 
 
+_MAXIMA = ("tau_max", "z_tau_max", "von_mises", "z_von_mises", "tau_orthogonal",
+           "y_tau_orthogonal", "z_tau_orthogonal", "tensile", "x_tensile", "y_tensile")
+_STRESSES = ("tau_max", "von_mises", "tau_orthogonal", "tensile")
+
+
+def _finite(value: float, what: str):
+    """The value, or None where it overflows a double; a NaN is an error, never printed."""
+    value = float(value)
+    if math.isnan(value):
+        raise _UsageError(f"{what} is not a number for this scene (a defect of hertz: "
+                          "please report the command line)")
+    return value if math.isfinite(value) else None
+
+
+def _stresses(scene, body1, body2, c, yield_strength) -> dict:
+    """{"body1": {...}, "body2": {...}}: the subsurface maxima and first-yield loads.
+
+    Without a contact patch (zero load) the stresses are 0 and their places None; the
+    first-yield load, which does not depend on the load (P_y = P (p0_y / p0)**3 with
+    p0 ~ P**(1/3)), is then scaled from a 1 N contact of the same bodies.
+    """
+    scaled_from = c
+    if yield_strength is not None and not c.load > 0:
+        scaled_from = contact(body1, body2, load=1.0,
+                              angle=math.radians(scene.get("angle_deg", 0.0)))
+    out = {}
+    for body in (1, 2):
+        if c.a > 0:
+            maxima = c.subsurface(body)
+            row = {k: _finite(getattr(maxima, k), f"body {body}'s {k}") for k in _MAXIMA}
+        else:
+            row = {k: (0.0 if k in _STRESSES else None) for k in _MAXIMA}
+        if yield_strength is not None:
+            for criterion in ("von_mises", "tresca"):
+                load = scaled_from.first_yield_load(yield_strength, body=body,
+                                                    criterion=criterion)
+                row[f"first_yield_load_{criterion}"] = _finite(
+                    load, f"body {body}'s first-yield load ({criterion})")
+        out[f"body{body}"] = row
+    return out
+
+
+_CONTACT_FIELDS = ("a", "b", "p0", "delta", "load", "ellipticity", "alpha", "m", "K", "E",
+                   "e_star", "rho_x", "rho_y", "rho_sum", "major_axis_angle", "p_mean", "area",
+                   "stiffness")
+
+
+def _fields(c) -> dict:
+    return {k: _finite(getattr(c, k), k) for k in _CONTACT_FIELDS}
+
+
+# --- output --------------------------------------------------------------------------------
+
 _PREFIXES = [(1e9, "G"), (1e6, "M"), (1e3, "k"), (1.0, ""), (1e-3, "m"), (1e-6, "u"), (1e-9, "n")]
 
 
-def _si(value: float, unit: str) -> str:
+def _si(value: float | None, unit: str) -> str:
+    if value is None:
+        return "overflow"
     if value == 0 or not math.isfinite(value):
         return f"{value:g} {unit}"
     for scale, prefix in _PREFIXES:
@@ -203,22 +316,27 @@ def _radius_text(r: float) -> str:
     return "flat" if math.isinf(r) else _si(r, "m")
 
 
-def _table(scene, body1, body2, c) -> str:
+def _g(value: float | None, unit: str = "") -> str:
+    return "overflow" if value is None else f"{value:.6g}{unit}"
+
+
+def _table(scene, body1, body2, f) -> str:
+    angle = None if f["major_axis_angle"] is None else math.degrees(f["major_axis_angle"])
     rows = [
-        ("load P", _si(c.load, "N")),
-        ("semi-major axis a", _si(c.a, "m")),
-        ("semi-minor axis b", _si(c.b, "m")),
-        ("ellipticity a/b", f"{c.ellipticity:.6g}"),
-        ("curvature ratio alpha", f"{c.alpha:.6g}"),
-        ("peak pressure p0", _si(c.p0, "Pa")),
-        ("mean pressure", _si(c.p_mean, "Pa")),
-        ("contact area", f"{c.area:.6g} m^2"),
-        ("approach delta", _si(c.delta, "m")),
-        ("stiffness dP/d(delta)", _si(c.stiffness, "N/m")),
-        ("major axis angle", f"{math.degrees(c.major_axis_angle):.6g} deg (from body 1's x axis)"),
-        ("E* (reduced modulus)", _si(c.e_star, "Pa")),
-        ("rho_x, rho_y", f"{c.rho_x:.6g}, {c.rho_y:.6g} 1/m"),
-        ("elliptic m, K(m), E(m)", f"{c.m:.6g}, {c.K:.6g}, {c.E:.6g}"),
+        ("load P", _si(f["load"], "N")),
+        ("semi-major axis a", _si(f["a"], "m")),
+        ("semi-minor axis b", _si(f["b"], "m")),
+        ("ellipticity a/b", _g(f["ellipticity"])),
+        ("curvature ratio alpha", _g(f["alpha"])),
+        ("peak pressure p0", _si(f["p0"], "Pa")),
+        ("mean pressure", _si(f["p_mean"], "Pa")),
+        ("contact area", _g(f["area"], " m^2")),
+        ("approach delta", _si(f["delta"], "m")),
+        ("stiffness dP/d(delta)", _si(f["stiffness"], "N/m")),
+        ("major axis angle", _g(angle, " deg (from body 1's x axis)")),
+        ("E* (reduced modulus)", _si(f["e_star"], "Pa")),
+        ("rho_x, rho_y", f"{_g(f['rho_x'])}, {_g(f['rho_y'])} 1/m"),
+        ("elliptic m, K(m), E(m)", f"{_g(f['m'])}, {_g(f['K'])}, {_g(f['E'])}"),
     ]
     lines = [f"Hertz point contact: {scene['name']}"]
     for i, b in ((1, body1), (2, body2)):
@@ -227,105 +345,203 @@ def _table(scene, body1, body2, c) -> str:
     lines.append(f"  angle between x axes: {scene.get('angle_deg', 0.0):g} deg")
     width = max(len(name) for name, _ in rows)
     lines.extend(f"  {name:<{width}}  {value}" for name, value in rows)
+    if f["a"] == 0:
+        lines.append("  zero load: no contact patch (its shape, a/b and the axes' angle, is "
+                     "that under any load)")
     return "\n".join(lines)
 
 
-_MAXIMA = ("tau_max", "z_tau_max", "von_mises", "z_von_mises", "tau_orthogonal",
-           "y_tau_orthogonal", "z_tau_orthogonal", "tensile", "x_tensile", "y_tensile")
+def _json(scene, fields, stresses) -> str:
+    return json.dumps({"scene": scene["name"], **fields, "stresses": stresses},
+                      allow_nan=False)
 
 
-def _finite(value: float):
-    return value if math.isfinite(value) else None
-
-
-def _stresses(c, yield_strength) -> dict:
-    """{"body1": {...}, "body2": {...}}: the subsurface maxima and first-yield loads."""
-    out = {}
-    for body in (1, 2):
-        maxima = c.subsurface(body)
-        row = {k: _finite(float(getattr(maxima, k))) for k in _MAXIMA}
-        if yield_strength is not None:
-            for criterion in ("von_mises", "tresca"):
-                load = c.first_yield_load(yield_strength, body=body, criterion=criterion)
-                row[f"first_yield_load_{criterion}"] = _finite(float(load))
-        out[f"body{body}"] = row
-    return out
-
-
-def _json(scene, c, stresses) -> str:
-    keys = ("a", "b", "p0", "delta", "load", "ellipticity", "alpha", "m", "K", "E", "e_star",
-            "rho_x", "rho_y", "rho_sum", "major_axis_angle", "p_mean", "area", "stiffness")
-    out = {"scene": scene["name"], **{k: _finite(float(getattr(c, k))) for k in keys},
-           "stresses": stresses}
-    return json.dumps(out, allow_nan=False)
-
-
-def _stress_table(stresses, yield_strength) -> list[str]:
-    lines = ["  stresses below the contact (frictionless; each body with its own nu):"]
-    labels = [("largest shear stress tau1", "tau_max", "z_tau_max", "Pa", "depth"),
-              ("largest von Mises stress", "von_mises", "z_von_mises", "Pa", "depth"),
-              ("orthogonal shear |tau_yz|", "tau_orthogonal", "z_tau_orthogonal", "Pa", "depth"),
-              ("surface tension at edge", "tensile", None, "Pa", None)]
+def _stress_table(stresses, yield_strength, zero_load: bool) -> list[str]:
+    labels = [("largest shear stress tau1", "tau_max", "z_tau_max", "depth"),
+              ("largest von Mises stress", "von_mises", "z_von_mises", "depth"),
+              ("orthogonal shear |tau_yz|", "tau_orthogonal", "z_tau_orthogonal", "depth"),
+              ("surface tension at edge", "tensile", None, None)]
     width = max(len(label) for label, *_ in labels) + 2
+    if zero_load:
+        lines = ["  stresses below the contact: none (zero load)"]
+    else:
+        lines = ["  stresses below the contact (frictionless; each body with its own nu):"]
     for body in (1, 2):
         row = stresses[f"body{body}"]
-        lines.append(f"    body {body}:")
-        for label, key, where, unit, kind in labels:
-            value = _si(row[key], unit) if row[key] is not None else "overflow"
+        if not zero_load or yield_strength is not None:
+            lines.append(f"    body {body}:")
+        for label, key, where, kind in labels if not zero_load else ():
             at = f" at {kind} {_si(row[where], 'm')}" if where and row[where] is not None else ""
             if key == "tau_orthogonal" and row["y_tau_orthogonal"] is not None:
                 at += f", y = {_si(row['y_tau_orthogonal'], 'm')}"
             if key == "tensile" and row["x_tensile"] is not None:
                 at = (f" at x = {_si(row['x_tensile'], 'm')}, "
                       f"y = {_si(row['y_tensile'], 'm')}")
-            lines.append(f"      {label:<{width}}{value}{at}")
+            lines.append(f"      {label:<{width}}{_si(row[key], 'Pa')}{at}")
         if yield_strength is not None:
             for criterion, name in (("von_mises", "von Mises"), ("tresca", "Tresca")):
-                load = row[f"first_yield_load_{criterion}"]
-                text = _si(load, "N") if load is not None else "overflow"
-                lines.append(f"      {'first yield, ' + name:<{width}}{text} "
+                load = _si(row[f"first_yield_load_{criterion}"], "N")
+                lines.append(f"      {'first yield, ' + name:<{width}}{load} "
                              f"(yield strength {_si(yield_strength, 'Pa')})")
     return lines
 
 
-def main(argv=None) -> int:
-    """Entry point of the ``hertz`` command; returns the exit status."""
+def _write(text: str, stream=None) -> None:
+    """Write text and a newline to stdout (or ``stream``), whatever its encoding.
+
+    Characters the stream's encoding cannot hold become backslash escapes.  A reader that
+    went away raises _ReaderLeftError; any other failure, including a closed stdout, is a
+    _UsageError.
+    """
+    stream = sys.stdout if stream is None else stream
+    if stream is None:  # the interpreter found descriptor 1 closed (hertz >&-)
+        raise _UsageError("cannot write the output: standard output is closed")
+    encoding = getattr(stream, "encoding", None)
+    if encoding:
+        try:
+            text = text.encode(encoding, "backslashreplace").decode(encoding)
+        except LookupError:
+            pass
     try:
-        args = _parser().parse_args(argv)
-        scene = _scene(args)
-        body1, body2, c = _solve(scene)
-        stresses = _stresses(c, args.yield_strength)
-        if args.plot:
-            _plot(c, scene, args.plot)
-    except (_UsageError, ValueError) as exc:
-        print(f"hertz: error: {exc}", file=sys.stderr)
-        return 2
+        stream.write(text + "\n")
+        stream.flush()
+    except BrokenPipeError:
+        if stream is sys.stdout:
+            _silence_stdout()
+        raise _ReaderLeftError from None
+    except (OSError, ValueError) as exc:  # a full disk, a closed descriptor or file
+        if stream is sys.stdout:
+            _silence_stdout()
+        raise _UsageError(f"cannot write the output: {getattr(exc, 'strerror', None) or exc}"
+                          ) from None
+
+
+def _silence_stdout() -> None:
+    """After a failed write: point descriptor 1 at the null device, so that the
+    interpreter's own flush at exit neither fails nor repeats the error."""
     try:
-        if args.json:
-            text = _json(scene, c, stresses)
-        else:
-            text = "\n".join([_table(scene, body1, body2, c),
-                              *_stress_table(stresses, args.yield_strength)])
-        print(text, flush=True)
-    except BrokenPipeError:  # `hertz | head`: the reader left; stop quietly
-        os.dup2(os.open(os.devnull, os.O_WRONLY), sys.stdout.fileno())
-    except OSError as exc:  # a full disk, a closed descriptor
-        os.dup2(os.open(os.devnull, os.O_WRONLY), sys.stdout.fileno())
-        print(f"hertz: error: cannot write the output: {exc.strerror or exc}", file=sys.stderr)
-        return 2
-    return 0
+        if sys.stdout is not None:
+            os.dup2(os.open(os.devnull, os.O_WRONLY), sys.stdout.fileno())
+    except (OSError, ValueError, io.UnsupportedOperation):
+        pass
+
+
+def _error(message: str) -> None:
+    if sys.stderr is None:
+        return
+    line = " ".join(str(message).split("\n"))
+    if len(line) > 1000:
+        line = line[:997] + "..."
+    try:
+        _write(f"hertz: error: {line}", sys.stderr)
+    except (_UsageError, _ReaderLeftError):
+        pass
+
+
+# --- the figure ----------------------------------------------------------------------------
+
+def _plot_format(path: str) -> str:
+    """The format of ``--plot PATH``: its suffix.  The path given is the path written."""
+    if not path:
+        raise _UsageError("--plot needs a file name such as stresses.png, got ''")
+    if os.path.isdir(path):
+        raise _UsageError(f"--plot {path!r} is a directory: give a file name such as "
+                          f"{os.path.join(path, 'stresses.png')!r}")
+    suffix = os.path.splitext(path)[1]
+    if len(suffix) < 2:
+        raise _UsageError(f"--plot {path!r} has no suffix naming the format: give e.g. "
+                          f"{path + '.png'!r} (the path given is the path written)")
+    return suffix[1:].lower()
 
 
 def _plot(c, scene, path: str) -> None:
+    fmt = _plot_format(path)
+    if not c.a > 0:
+        raise _UsageError("--plot: the load is zero: there are no stresses to draw")
     try:
+        import matplotlib.pyplot as plt
+        from matplotlib.backend_bases import FigureCanvasBase
+
         from ._plot import stress_figure
     except ImportError as exc:
         raise _UsageError(f"--plot needs matplotlib ({exc.name} is not installed): "
-                          "pip install 'hertz-contact[plot]'") from None
+                          f"{_PLOT_EXTRA}") from None
+    formats = FigureCanvasBase.get_supported_filetypes()
+    if fmt not in formats:
+        raise _UsageError(f"--plot {path!r}: matplotlib does not write {fmt!r} files "
+                          f"(it writes {', '.join(sorted(formats))})")
+    title = scene["name"].replace("$", r"\$")  # a name, not matplotlib math text
+    figure = stress_figure(c, title=title)
+    drawn = io.BytesIO()  # drawn in memory first: a failure leaves no half-written file
     try:
-        stress_figure(c, title=scene["name"]).savefig(path, dpi=130)
-    except (OSError, ValueError) as exc:
-        raise _UsageError(f"cannot write the plot {path!r}: {exc}") from None
+        figure.savefig(drawn, format=fmt, dpi=130)
+    except Exception as exc:  # noqa: BLE001  (matplotlib raises many kinds)
+        raise _UsageError(f"cannot draw the plot as {fmt}: {exc}") from None
+    finally:
+        plt.close(figure)
+    existed = os.path.lexists(path)
+    try:
+        with open(path, "wb") as f:
+            f.write(drawn.getvalue())
+    except OSError as exc:
+        if not existed:
+            try:
+                os.remove(path)
+            except OSError:
+                pass
+        raise _UsageError(f"cannot write the plot {path!r}: {exc.strerror or exc}") from None
+
+
+# --- the command ---------------------------------------------------------------------------
+
+
+def _run(argv) -> int:
+    args = _parser().parse_args(argv)
+    if sys.stdout is None:
+        raise _UsageError("cannot write the output: standard output is closed")
+    if args.plot is not None:
+        _plot_format(args.plot)  # a bad name fails before any work
+    scene = _scene(args)
+    # Overflow and underflow are reported as such (overflow, null); a NaN is an error
+    # (_finite): numpy's floating-point warnings would only repeat them on stderr.
+    with np.errstate(all="ignore"):
+        body1, body2, c = _solve(scene)
+        fields = _fields(c)
+        stresses = _stresses(scene, body1, body2, c, args.yield_strength)
+        if args.plot is not None:
+            _plot(c, scene, args.plot)
+    if args.json:
+        text = _json(scene, fields, stresses)
+    else:
+        text = "\n".join([_table(scene, body1, body2, fields),
+                          *_stress_table(stresses, args.yield_strength, not c.a > 0)])
+    _write(text)
+    return 0
+
+
+def main(argv=None) -> int:
+    """Entry point of the ``hertz`` command; returns the exit status.
+
+    Every failure is one line on stderr and status 2, never a traceback.
+    """
+    try:
+        return _run(argv)
+    except _ReaderLeftError:  # `hertz | head`: the reader left; stop quietly
+        return 0
+    except (_UsageError, ValueError) as exc:
+        message = str(exc)
+    except RecursionError:
+        message = "the input is nested too deeply"
+    except MemoryError:
+        message = "out of memory"
+    except KeyboardInterrupt:
+        _error("interrupted")
+        return 130
+    except Exception as exc:  # noqa: BLE001  (the promise: no traceback, ever)
+        message = (f"unexpected {type(exc).__name__}: {exc} (a defect of hertz: please "
+                   "report the command line)")
+    _error(message)
+    return 2
 
 
 if __name__ == "__main__":

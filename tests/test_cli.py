@@ -1,14 +1,41 @@
-"""The hertz command: default scene, --json, scene files, one-line errors with status 2."""
+"""The hertz command: default scene, --json, scene files, one-line errors with status 2,
+hostile input (no traceback, ever)."""
 
 import json
-import shutil
+import os
 import subprocess
 import sys
+from pathlib import Path
 
 import pytest
 
 import hertz
 from hertz.cli import main
+
+#: The directory holding the hertz package these tests import: the command runs from it
+#: (``python -m hertz.cli``), not from whatever ``hertz`` script is on PATH.
+HERTZ_ROOT = str(Path(hertz.__file__).resolve().parent.parent)
+LINUX = sys.platform.startswith("linux")
+
+
+def command_env(**extra):
+    path = os.pathsep.join(p for p in (HERTZ_ROOT, os.environ.get("PYTHONPATH")) if p)
+    return {**os.environ, "PYTHONPATH": path, **extra}
+
+
+def run_command(*argv, cwd=None, env=None, **kwargs):
+    """``python -m hertz.cli *argv`` in a subprocess: (status, stdout, stderr) as text."""
+    kwargs.setdefault("stdout", subprocess.PIPE)
+    done = subprocess.run([sys.executable, "-m", "hertz.cli", *argv], cwd=cwd,
+                          env=command_env(**(env or {})), stderr=subprocess.PIPE, **kwargs)
+    out = done.stdout.decode("utf-8", "replace") if done.stdout is not None else ""
+    return done.returncode, out, done.stderr.decode("utf-8", "replace")
+
+
+def assert_one_line_error(status, out, err, message):
+    assert "Traceback" not in err
+    assert status == 2 and out == "", (status, out, err)
+    assert err.count("\n") == 1 and err.startswith("hertz: error: ") and message in err, err
 
 
 def run(capsys, *argv):
@@ -106,14 +133,12 @@ def test_json_is_strict(capsys):
     assert any(value is None for value in data.values())  # p0 overflows: null, not Infinity
 
 
-@pytest.mark.skipif(not sys.platform.startswith("linux"), reason="/dev/full is Linux's")
-def test_a_full_disk_is_one_line_and_status_2():
-    exe = shutil.which("hertz")
-    cmd = [exe] if exe else [sys.executable, "-m", "hertz.cli"]
+@pytest.mark.skipif(not LINUX, reason="/dev/full is Linux's")
+@pytest.mark.parametrize("argv", [[], ["--json"], ["--help"]])
+def test_a_full_disk_is_one_line_and_status_2(argv):
     with open("/dev/full", "w") as full:
-        done = subprocess.run(cmd, stdout=full, stderr=subprocess.PIPE, text=True)
-    assert done.returncode == 2 and "Traceback" not in done.stderr
-    assert done.stderr.count("\n") == 1 and "No space left on device" in done.stderr
+        status, out, err = run_command(*argv, stdout=full)
+    assert_one_line_error(status, out, err, "No space left on device")
 
 
 def test_bad_scene_file(tmp_path, capsys):
@@ -125,15 +150,12 @@ def test_bad_scene_file(tmp_path, capsys):
     assert status == 2 and "unknown key 'lode'" in err
 
 
-def test_console_script_runs_without_traceback():
-    exe = shutil.which("hertz")
-    cmd = [exe] if exe else [sys.executable, "-m", "hertz.cli"]
-    ok = subprocess.run(cmd, capture_output=True, text=True)
-    assert ok.returncode == 0 and "semi-major axis a" in ok.stdout
-    bad = subprocess.run(cmd + ["--load=-5"], capture_output=True, text=True)
-    assert bad.returncode == 2 and "Traceback" not in bad.stderr
-    assert bad.stderr.strip().count("\n") == 0
-    closed = subprocess.Popen(cmd, stdout=subprocess.PIPE, stderr=subprocess.PIPE)
+def test_the_command_runs_without_traceback():
+    status, out, err = run_command()
+    assert status == 0 and "semi-major axis a" in out and err == ""
+    assert_one_line_error(*run_command("--load=-5"), "load must be a finite value >= 0")
+    closed = subprocess.Popen([sys.executable, "-m", "hertz.cli"], env=command_env(),
+                              stdout=subprocess.PIPE, stderr=subprocess.PIPE)
     closed.stdout.close()  # the reader goes away before the table is written
     assert closed.wait() == 0 and closed.stderr.read() == b""
 
@@ -144,3 +166,163 @@ def test_import_hertz_is_light():
             "'meshio', 'pyamg', 'mpmath') if m in sys.modules))")
     out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True)
     assert out.returncode == 0 and out.stdout.strip() == "[]"
+
+
+# --- hostile input: every failure is one line on stderr and status 2, never a traceback ---
+
+DEEP = 3000
+HOSTILE = [
+    # (id, argv, files to create {name: text}, message on stderr)
+    ("integer beyond a double", ["--scene", "s.toml"], {"s.toml": "load = 1" + "0" * 400},
+     "load must be a number a double can hold (|x| < 1.8e308), got an integer of 401 digits"),
+    ("negative integer beyond a double in a body", ["--scene", "s.toml"],
+     {"s.toml": "[body2]\nE = -1" + "0" * 320}, "body2.E must be a number a double can hold"),
+    ("integer of 5000 digits", ["--scene", "s.toml"], {"s.toml": "load = 1" + "0" * 5000},
+     "cannot be read"),
+    ("array nested 3000 deep", ["--scene", "s.toml"],
+     {"s.toml": "x = " + "[" * DEEP + "]" * DEEP}, "nested too deeply"),
+    ("inline table nested 3000 deep", ["--scene", "s.toml"],
+     {"s.toml": "load = " + "{a = " * DEEP + "1" + "}" * DEEP}, "nested too deeply"),
+    ("dotted key 3000 deep", ["--scene", "s.toml"], {"s.toml": ".".join(["a"] * DEEP) + " = 1"},
+     "unknown key 'a'"),
+    ("table 3000 deep in a body", ["--scene", "s.toml"],
+     {"s.toml": "[body1." + ".".join(["a"] * DEEP) + "]\n"}, "unknown key(s) in [body1]: 'a'"),
+    ("array 300 deep as a load", ["--scene", "s.toml"],
+     {"s.toml": "load = " + "[" * 300 + "1" + "]" * 300},
+     "load must be a number, got an array: [[[[["),
+    ("not UTF-8", ["--scene", "s.toml"], {"s.toml": b'name = "\xff"\n'}, "is not valid TOML"),
+    ("scene file is a directory", ["--scene", "."], {}, "cannot read scene file '.'"),
+    ("load beyond a double", ["--load", "1e400"], {}, "load must be a finite value >= 0"),
+    ("angle not a number", ["--angle-deg", "nan"], {}, "angle"),
+    ("plot: empty name", ["--plot", ""], {}, "--plot needs a file name"),
+    ("plot: a directory", ["--plot", "figs"], {"figs/": None}, "'figs' is a directory"),
+    ("plot: no suffix", ["--plot", "figure"], {}, "'figure' has no suffix naming the format"),
+    ("plot: missing directory", ["--plot", "no/such/dir.png"], {},
+     "cannot write the plot 'no/such/dir.png'"),
+    ("plot of a zero load", ["--load", "0", "--plot", "zero.png"], {},
+     "the load is zero: there are no stresses to draw"),
+]
+if LINUX:
+    HOSTILE += [
+        ("plot to /dev/full", ["--plot", "/dev/full"], {}, "'/dev/full' has no suffix"),
+        ("scene /dev/zero", ["--scene", "/dev/zero"], {}, "larger than 1048576 bytes"),
+    ]
+
+
+@pytest.mark.parametrize("argv, files, message", [case[1:] for case in HOSTILE],
+                         ids=[case[0] for case in HOSTILE])
+def test_hostile_input_is_one_line_and_status_2(tmp_path, argv, files, message):
+    for name, content in files.items():
+        if content is None:
+            (tmp_path / name).mkdir()
+        elif isinstance(content, bytes):
+            (tmp_path / name).write_bytes(content)
+        else:
+            (tmp_path / name).write_text(content)
+    before = {p: p.read_bytes() for p in tmp_path.rglob("*") if p.is_file()}
+    status, out, err = run_command(*argv, cwd=tmp_path)
+    assert_one_line_error(status, out, err, message)
+    after = {p: p.read_bytes() for p in tmp_path.rglob("*") if p.is_file()}
+    assert after == before  # nothing written, nothing changed (no figs.png, zero.png, ...)
+    assert not Path("/dev/full.png").exists()
+
+
+def test_plot_format_must_be_one_matplotlib_writes(tmp_path):
+    pytest.importorskip("matplotlib")
+    status, out, err = run_command("--plot", "figure.xyz", cwd=tmp_path)
+    assert_one_line_error(status, out, err, "matplotlib does not write 'xyz' files")
+    assert list(tmp_path.iterdir()) == []
+
+
+@pytest.mark.parametrize("name", ["figure.pdf", "figure.SVG", "figure.png"])
+def test_plot_writes_the_path_given_in_the_format_of_its_suffix(tmp_path, name):
+    pytest.importorskip("matplotlib")
+    status, out, err = run_command("--plot", name, "--yield-strength", "1.5e9", cwd=tmp_path)
+    assert status == 0 and err == ""
+    assert [p.name for p in tmp_path.iterdir()] == [name]
+    magic = {"pdf": b"%PDF", "svg": b"<?xml", "png": b"\x89PNG"}[name.rsplit(".")[1].lower()]
+    assert (tmp_path / name).read_bytes().startswith(magic)
+    assert "bearing ball on inner race (default scene)" in out  # not relabelled
+
+
+@pytest.mark.skipif(os.name != "posix", reason="closes descriptor 1 with the shell")
+def test_closed_stdout_is_an_error_not_a_silent_success():
+    command = f"{sys.executable!s} -m hertz.cli --json >&-"
+    done = subprocess.run(["sh", "-c", command], env=command_env(), capture_output=True,
+                          text=True)
+    assert_one_line_error(done.returncode, done.stdout, done.stderr,
+                          "cannot write the output: standard output is closed")
+
+
+NAME = "Kugel auf Ring \u00e4\u2014\U0001d70e \"quoted\" \\ $x^$"
+
+
+@pytest.mark.parametrize("env", [{"PYTHONIOENCODING": "ascii"}, {"LC_ALL": "C", "LANG": "C"}])
+def test_a_name_the_output_cannot_encode(tmp_path, env):
+    scene = tmp_path / "s.toml"
+    scene.write_text('name = "Kugel auf Ring \u00e4\u2014\U0001d70e \\"quoted\\" \\\\ $x^$"\n',
+                     encoding="utf-8")
+    status, out, err = run_command("--scene", str(scene), env=env)
+    assert status == 0 and err == ""
+    first = out.splitlines()[0]
+    assert first.startswith("Hertz point contact: Kugel auf Ring ")
+    if env.get("PYTHONIOENCODING") == "ascii":
+        assert out.isascii() and "\\xe4\\u2014\\U0001d70e" in first
+    status, out, err = run_command("--scene", str(scene), "--json", env=env)
+    assert status == 0 and err == "" and json.loads(out)["scene"] == NAME
+
+
+@pytest.mark.parametrize("argv", [
+    ["--yield-strength=1.7e308", "--r2x=-0.999", "--e1=1e20"],  # first yield beyond a double
+    ["--json", "--yield-strength=1e300", "--r2x=1e-30"],
+    ["--nu1=-6.2e-3", "--yield-strength=0.5", "--r2x=0.5", "--approach=5e-324"],  # load underflows
+])
+def test_no_warning_on_stderr_of_a_successful_run(argv):
+    status, out, err = run_command(*argv, env={"PYTHONWARNINGS": "always"})
+    assert status == 0 and err == ""
+
+
+def test_overflow_is_said_not_printed_as_inf(capsys):
+    status, out, err = run(capsys, "--yield-strength=1.7e308", "--r2x=-0.999", "--e1=1e20")
+    assert status == 0 and "first yield, von Mises     overflow" in out and "inf" not in out
+
+
+@pytest.mark.parametrize("argv, label", [
+    ([], "bearing ball on inner race (default scene)"),
+    (["--yield-strength", "1e9"], "bearing ball on inner race (default scene)"),
+    (["--json"], "bearing ball on inner race (default scene)"),
+    (["--load", "800"], "custom scene"),
+    (["--angle-deg", "0"], "custom scene"),  # given, even if equal to the default
+    (["--nu2", "0.3"], "custom scene"),
+])
+def test_only_options_that_change_the_scene_relabel_it(capsys, argv, label):
+    status, out, _ = run(capsys, "--json", *argv)
+    assert status == 0 and json.loads(out)["scene"] == label
+
+
+# --- a zero load is a contact without a patch ----------------------------------------------
+
+def race_contact(load):
+    return hertz.contact(hertz.Body(6e-3, 6e-3, 210e9, 0.3),
+                         hertz.Body(-6.2e-3, 40e-3, 210e9, 0.3), load=load)
+
+
+@pytest.mark.parametrize("given", [["--load", "0"], ["--approach", "0"]])
+def test_zero_load(capsys, given):
+    status, out, err = run(capsys, *given, "--json", "--yield-strength", "1.5e9")
+    data = json.loads(out)
+    assert status == 0 and err == ""
+    assert data["a"] == data["b"] == data["p0"] == data["load"] == data["delta"] == 0.0
+    assert data["ellipticity"] == race_contact(1500.0).ellipticity  # the shape under any load
+    for body in ("body1", "body2"):
+        row = data["stresses"][body]
+        assert row["tau_max"] == row["von_mises"] == row["tensile"] == 0.0
+        assert row["z_tau_max"] is None and row["x_tensile"] is None
+        # P_y = P (p0_y/p0)**3 with p0 ~ P**(1/3): the first-yield load does not depend on
+        # the load, so the zero-load contact's is that of the same bodies at 1500 N
+        for criterion in ("von_mises", "tresca"):
+            expected = race_contact(1500.0).first_yield_load(1.5e9, int(body[-1]), criterion)
+            assert row[f"first_yield_load_{criterion}"] == pytest.approx(expected, rel=1e-13)
+    status, out, err = run(capsys, *given)
+    assert status == 0 and "semi-major axis a       0 m" in out
+    assert "zero load: no contact patch" in out and "stresses below the contact: none" in out
