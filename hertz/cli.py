@@ -6,29 +6,18 @@ inner race of a deep-groove ball bearing (groove radius 6.2 mm, race radius
 scene file change any of it::
 
     hertz --load 800 --json
+    hertz --print-scene my_scene.toml        # the default scene, to edit
     hertz --scene my_scene.toml --angle-deg 30
     hertz --yield-strength 1.5e9 --plot stresses.png
 
-A scene file holds the same names as the options::
-
-    name = "crossed cylinders"
-    load = 100.0          # N (or: approach = 1e-6, in m)
-    angle_deg = 90.0
-    [body1]
-    Rx = 0.01             # m; negative concave, "inf" flat
-    Ry = "inf"
-    E = 210e9             # Pa
-    nu = 0.3
-    [body2]
-    Rx = 0.01
-    Ry = "inf"
-    E = 210e9
-    nu = 0.3
+``hertz --help`` ends with the scene-file format (every key, its unit and
+default) and the default scene; both are generated from ``SCENE_KEYS``,
+``BODY_KEYS`` and ``DEFAULT_SCENE`` below, which are also what
+``--print-scene`` writes and ``--scene`` reads.
 
 Errors (bad values, a missing or oversized file, no Hertz contact, output
-that cannot be written) print one line on stderr and exit with status 2,
-never a traceback.  ``--json`` prints strict JSON: a value that overflows a
-double is ``null``.
+that cannot be written) print one line on stderr and exit with status 2.
+``--json`` prints strict JSON: a value that overflows a double is ``null``.
 """
 
 from __future__ import annotations
@@ -54,7 +43,21 @@ DEFAULT_SCENE = {
     "angle_deg": 0.0,
 }
 
-_BODY_KEYS = ("Rx", "Ry", "E", "nu")
+#: The top-level keys of a scene file: (key, unit, meaning).
+SCENE_KEYS = (
+    ("name", "", "label printed with the results (default: the file's path)"),
+    ("load", "N", "normal force, >= 0 (0: no contact patch, no stresses)"),
+    ("approach", "m", "instead of load: the approach of the bodies (the load is computed)"),
+    ("angle_deg", "deg", "angle between the bodies' x axes"),
+)
+#: The keys of the [body1] and [body2] tables: (key, unit, meaning).
+BODY_KEYS = (
+    ("Rx", "m", "principal radius along the body's x axis: > 0 convex, < 0 concave, inf flat"),
+    ("Ry", "m", "principal radius along the body's y axis (same signs)"),
+    ("E", "Pa", "Young's modulus, > 0"),
+    ("nu", "-", "Poisson's ratio, in (-1, 0.5]"),
+)
+_BODY_KEYS = tuple(key for key, _, _ in BODY_KEYS)
 #: Options that change the scene (the others only add output).
 _SCENE_OPTIONS = ("r1x", "r1y", "e1", "nu1", "r2x", "r2y", "e2", "nu2", "load", "approach",
                   "angle_deg")
@@ -89,8 +92,14 @@ def _number(text: str) -> float:
 
 def _parser() -> argparse.ArgumentParser:
     p = _Parser(prog="hertz", description="Hertz point contact of two elastic bodies "
-                "(SI units; radii negative for concave, inf for flat).")
-    p.add_argument("--scene", metavar="FILE", help="TOML scene file (options override it)")
+                "(SI units; radii negative for concave, inf for flat).",
+                epilog=_help_epilog(), formatter_class=argparse.RawDescriptionHelpFormatter)
+    p.add_argument("--scene", metavar="FILE", help="TOML scene file (format below; options "
+                   "override it)")
+    p.add_argument("--print-scene", nargs="?", const="-", metavar="FILE",
+                   help="write the scene (the default one, changed by any options and "
+                        "--scene given) as a TOML file to start from, to FILE (never over an "
+                        "existing file) or to stdout (no FILE, or -), and exit")
     for i in (1, 2):
         g = p.add_argument_group(f"body {i}")
         for axis in "xy":
@@ -117,12 +126,99 @@ def _parser() -> argparse.ArgumentParser:
     return p
 
 
-# --- the scene file --------------------------------------------
+# --- the scene file: format, reading, writing --------------------------------------------
+
+def _help_epilog() -> str:
+    """The scene-file format and the default scene, for the end of ``hertz --help``."""
+    def rows(keys, indent):
+        named = [(f"{key} [{unit}]" if unit else key, meaning) for key, unit, meaning in keys]
+        width = max(len(key) for key, _ in named) + 2
+        for key, meaning in named:
+            yield f"{indent}{key:<{width}}{meaning}"
+
+    lines = ["scene file (--scene FILE; TOML, SI units):", *rows(SCENE_KEYS, "  "),
+             "  [body1], [body2]: one table per body, with", *rows(BODY_KEYS, "    "),
+             "  Every key is optional: a missing one keeps the default scene's value (give",
+             "  load or approach, not both); options on the command line override the file.",
+             "  Numbers are TOML integers or floats (inf, -inf), or strings that spell one",
+             "  (\"inf\", \"1e-3\"). Names the output's encoding cannot show are printed with",
+             "  \\x.., \\u.. escapes.",
+             "",
+             "default scene (hertz --print-scene FILE writes it, to edit):"]
+    lines += ["  " + line if line else "" for line in scene_toml(DEFAULT_SCENE).splitlines()]
+    return "\n".join(lines)
 
 
+def scene_toml(scene: dict, encoding: str | None = None) -> str:
+    """The scene as a TOML scene file that ``hertz --scene`` reads back to the same scene.
+
+    Numbers are written in their shortest form that reads back to the same double;
+    characters of the name that ``encoding`` cannot encode are written as TOML escapes.
+    """
+    load = ("approach", "m") if "approach" in scene else ("load", "N")
+    top = [(load[0], _toml_number(scene[load[0]]),
+            f"{load[1]}" + ("  (or: approach = ..., in m)" if load[0] == "load" else
+                            "  (or: load = ..., in N)")),
+           ("angle_deg", _toml_number(scene.get("angle_deg", 0.0)),
+            "degrees between the bodies' x axes")]
+    comments = {"Rx": "m; > 0 convex, < 0 concave, inf flat", "Ry": "m", "E": "Pa", "nu": "-"}
+    lines = ["# hertz scene file: hertz --scene FILE reads it; hertz --help lists every key",
+             f"name = {_toml_string(scene['name'], encoding)}"]
+    lines += _aligned(top)
+    for name in ("body1", "body2"):
+        lines += ["", f"[{name}]"]
+        lines += _aligned([(key, _toml_number(scene[name][key]), comments[key])
+                           for key in _BODY_KEYS])
+    return "\n".join(lines) + "\n"
 
 
+def _aligned(rows) -> list[str]:
+    width = max(len(f"{key} = {value}") for key, value, _ in rows) + 2
+    return [f"{f'{key} = {value}':<{width}}# {comment}" for key, value, comment in rows]
 
+
+def _toml_number(value) -> str:
+    """The shortest TOML float that reads back to ``float(value)`` exactly."""
+    x = float(value)
+    if math.isnan(x):
+        return "nan"
+    if math.isinf(x):
+        return "inf" if x > 0 else "-inf"
+    text = repr(x)
+    for digits in range(1, 18):  # %g is shorter for large and small magnitudes (2.1e+11)
+        short = f"{x:.{digits}g}"
+        if float(short) == x:
+            text = min(text, short, key=len)
+            break
+    return text if any(c in text for c in ".e") else text + ".0"  # a float, not an integer
+
+
+def _toml_string(text: str, encoding: str | None = None) -> str:
+    """A TOML basic string; control characters and what ``encoding`` cannot hold escaped."""
+    out = []
+    for ch in text:
+        code = ord(ch)
+        if 0xD800 <= code <= 0xDFFF:  # a lone surrogate (undecodable bytes of a path)
+            ch, code = "\ufffd", 0xFFFD
+        if ch in '"\\':
+            out.append("\\" + ch)
+        elif code < 0x20 or code == 0x7F or not _encodable(ch, encoding):
+            out.append(f"\\u{code:04X}" if code <= 0xFFFF else f"\\U{code:08X}")
+        else:
+            out.append(ch)
+    return '"' + "".join(out) + '"'
+
+
+def _encodable(ch: str, encoding: str | None) -> bool:
+    if encoding is None:
+        return True
+    try:
+        ch.encode(encoding)
+    except UnicodeEncodeError:
+        return False
+    except LookupError:
+        return True
+    return True
 
 
 def _read_scene(path: str) -> dict:
@@ -161,7 +257,7 @@ def _read_scene(path: str) -> dict:
                 raise _UsageError(f"scene file: name must be a string, got {_kind(value)}")
             merged[key] = value
         else:
-            allowed = "name, load, approach, angle_deg"
+            allowed = ", ".join(key for key, _, _ in SCENE_KEYS)
             raise _UsageError(f"scene file: unknown key {_show(key)} (allowed: {allowed}, "
                               "[body1], [body2])")
     if "approach" in scene:
@@ -494,10 +590,33 @@ def _plot(c, scene, path: str) -> None:
 
 # --- the command ---------------------------------------------------------------------------
 
+def _print_scene(scene: dict, path: str) -> None:
+    if path in ("", None):
+        raise _UsageError("--print-scene needs a file name or -, got ''")
+    if path == "-":
+        _write(scene_toml(scene, getattr(sys.stdout, "encoding", None)).rstrip("\n"))
+        return
+    try:
+        with open(path, "x", encoding="utf-8") as f:  # never over an existing file
+            f.write(scene_toml(scene))
+    except FileExistsError:
+        raise _UsageError(f"--print-scene: {path!r} exists; remove it or give another "
+                          "name") from None
+    except OSError as exc:
+        raise _UsageError(f"cannot write the scene file {path!r}: {exc.strerror or exc}"
+                          ) from None
+
 
 def _run(argv) -> int:
     args = _parser().parse_args(argv)
-    if sys.stdout is None:
+    if args.print_scene is not None:
+        extra = [opt for opt, given in (("--json", args.json), ("--plot", args.plot),
+                                        ("--yield-strength", args.yield_strength))
+                 if given not in (None, False)]
+        if extra:
+            raise _UsageError(f"--print-scene writes the scene only: {', '.join(extra)} "
+                              "not allowed with it")
+    elif sys.stdout is None:
         raise _UsageError("cannot write the output: standard output is closed")
     if args.plot is not None:
         _plot_format(args.plot)  # a bad name fails before any work
@@ -506,6 +625,9 @@ def _run(argv) -> int:
     # (_finite): numpy's floating-point warnings would only repeat them on stderr.
     with np.errstate(all="ignore"):
         body1, body2, c = _solve(scene)
+        if args.print_scene is not None:
+            _print_scene(scene, args.print_scene)
+            return 0
         fields = _fields(c)
         stresses = _stresses(scene, body1, body2, c, args.yield_strength)
         if args.plot is not None:

@@ -1,16 +1,20 @@
 """The hertz command: default scene, --json, scene files, one-line errors with status 2,
-hostile input (no traceback, ever)."""
+hostile input (no traceback, ever), the scene-file format in --help and --print-scene."""
 
 import json
+import math
 import os
 import subprocess
 import sys
+import tomllib
 from pathlib import Path
 
 import pytest
+from hypothesis import given
+from hypothesis import strategies as st
 
 import hertz
-from hertz.cli import main
+from hertz.cli import DEFAULT_SCENE, _toml_number, _toml_string, main
 
 #: The directory holding the hertz package these tests import: the command runs from it
 #: (``python -m hertz.cli``), not from whatever ``hertz`` script is on PATH.
@@ -134,7 +138,7 @@ def test_json_is_strict(capsys):
 
 
 @pytest.mark.skipif(not LINUX, reason="/dev/full is Linux's")
-@pytest.mark.parametrize("argv", [[], ["--json"], ["--help"]])
+@pytest.mark.parametrize("argv", [[], ["--json"], ["--help"], ["--print-scene"]])
 def test_a_full_disk_is_one_line_and_status_2(argv):
     with open("/dev/full", "w") as full:
         status, out, err = run_command(*argv, stdout=full)
@@ -201,6 +205,13 @@ HOSTILE = [
      "cannot write the plot 'no/such/dir.png'"),
     ("plot of a zero load", ["--load", "0", "--plot", "zero.png"], {},
      "the load is zero: there are no stresses to draw"),
+    ("print-scene over an existing file", ["--print-scene", "old.toml"],
+     {"old.toml": "load = 5\n"}, "'old.toml' exists"),
+    ("print-scene: empty name", ["--print-scene", ""], {}, "--print-scene needs a file name"),
+    ("print-scene with --json", ["--print-scene", "--json"], {},
+     "--print-scene writes the scene only: --json not allowed with it"),
+    ("print-scene of a bad scene", ["--nu1", "0.7", "--print-scene", "bad.toml"], {},
+     "nu must be a Poisson's ratio"),
 ]
 if LINUX:
     HOSTILE += [
@@ -270,6 +281,8 @@ def test_a_name_the_output_cannot_encode(tmp_path, env):
         assert out.isascii() and "\\xe4\\u2014\\U0001d70e" in first
     status, out, err = run_command("--scene", str(scene), "--json", env=env)
     assert status == 0 and err == "" and json.loads(out)["scene"] == NAME
+    status, out, err = run_command("--scene", str(scene), "--print-scene", env=env)
+    assert status == 0 and err == "" and tomllib.loads(out)["name"] == NAME
 
 
 @pytest.mark.parametrize("argv", [
@@ -326,3 +339,72 @@ def test_zero_load(capsys, given):
     status, out, err = run(capsys, *given)
     assert status == 0 and "semi-major axis a       0 m" in out
     assert "zero load: no contact patch" in out and "stresses below the contact: none" in out
+
+
+# --- the scene-file format in --help; --print-scene writes what --scene reads -------------
+
+def test_help_ends_with_the_scene_format_and_the_default_scene(capsys):
+    with pytest.raises(SystemExit) as done:
+        main(["--help"])
+    out = capsys.readouterr().out
+    assert done.value.code == 0
+    format_part, default_part = out.split("default scene (hertz --print-scene FILE writes it")
+    for key, unit in (("name", ""), ("load", "[N]"), ("approach", "[m]"),
+                      ("angle_deg", "[deg]"), ("Rx", "[m]"), ("Ry", "[m]"), ("E", "[Pa]"),
+                      ("nu", "[-]")):
+        assert f"  {key} {unit}".rstrip() in format_part
+    assert "[body1], [body2]" in format_part
+    toml_text = "\n".join(line[2:] for line in default_part.splitlines()[1:])
+    scene = tomllib.loads(toml_text)
+    # the built-in scene of the module docstring: a 12 mm ball on a 6.2 mm groove of a race
+    # of 40 mm rolling radius, steel on steel, 1500 N
+    assert scene == {"name": "bearing ball on inner race (default scene)", "load": 1500.0,
+                     "angle_deg": 0.0,
+                     "body1": {"Rx": 0.006, "Ry": 0.006, "E": 210e9, "nu": 0.3},
+                     "body2": {"Rx": -0.0062, "Ry": 0.04, "E": 210e9, "nu": 0.3}}
+
+
+@pytest.mark.parametrize("argv", [
+    [],
+    ["--load", "800", "--angle-deg", "33.3", "--r2x", "inf"],
+    ["--approach", "1e-5", "--r1x", "0.1", "--r1y", "-0.3", "--r2x", "0.0123456789012345678",
+     "--e2", "70.3e9", "--nu2", "0.33"],
+    ["--load", "1e-300", "--r1x", "1e-3", "--r1y", "2.5e-3", "--nu1", "-0.999", "--e1", "1e300",
+     "--r2x", "1e-6", "--r2y", "1e6"],
+    ["--load", "0"],
+])
+def test_print_scene_reads_back_to_the_same_result(tmp_path, capsys, argv):
+    path = tmp_path / "scene.toml"
+    assert run(capsys, *argv, "--print-scene", str(path)) == (0, "", "")
+    direct = run(capsys, *argv, "--json", "--yield-strength", "1e9")
+    assert direct[0] == 0
+    assert run(capsys, "--scene", str(path), "--json", "--yield-strength", "1e9") == direct
+    # to stdout, the same file
+    status, out, _ = run(capsys, *argv, "--print-scene")
+    assert status == 0 and out == path.read_text()
+    assert run(capsys, *argv, "--print-scene", "-")[1] == out
+
+
+def test_print_scene_of_a_scene_file_keeps_its_name(tmp_path, capsys):
+    source = tmp_path / "crossed.toml"
+    source.write_text('name = "crossed cylinders"\nload = 100\nangle_deg = 90\n'
+                      '[body1]\nRx = 0.01\nRy = "inf"\n[body2]\nRx = 0.01\nRy = inf\n')
+    out = run(capsys, "--scene", str(source), "--print-scene")[1]
+    scene = tomllib.loads(out)
+    assert scene["name"] == "crossed cylinders" and scene["load"] == 100.0
+    assert scene["body1"]["Ry"] == math.inf and scene["body2"]["E"] == DEFAULT_SCENE["body2"]["E"]
+
+
+@given(st.floats(allow_nan=False) | st.sampled_from([5e-324, -0.0, 1e-310, 2.0**1023]))
+def test_a_toml_number_reads_back_to_the_same_double(x):
+    text = _toml_number(x)
+    back = tomllib.loads(f"x = {text}")["x"]
+    assert isinstance(back, float) and back == x and math.copysign(1, back) == math.copysign(1, x)
+    assert len(text) <= len(repr(x)) + 2  # the shortest form, not 17 digits
+
+
+@given(st.text(alphabet=st.characters(blacklist_categories=("Cs",))))
+def test_a_toml_string_reads_back_to_the_same_text(text):
+    assert tomllib.loads(f"n = {_toml_string(text)}")["n"] == text
+    ascii_only = _toml_string(text, "ascii")
+    assert ascii_only.isascii() and tomllib.loads(f"n = {ascii_only}")["n"] == text
