@@ -358,12 +358,13 @@ def _finite(value: float, what: str):
 def _stresses(scene, body1, body2, c, yield_strength) -> dict:
     """{"body1": {...}, "body2": {...}}: the subsurface maxima and first-yield loads.
 
-    Without a contact patch (zero load) the stresses are 0 and their places None; the
-    first-yield load, which does not depend on the load (P_y = P (p0_y / p0)**3 with
-    p0 ~ P**(1/3)), is then scaled from a 1 N contact of the same bodies.
+    Without a contact patch (zero load) the stresses are 0 and their places None.  The
+    first-yield load does not depend on the load (P_y = P (p0_y / p0)**3 with
+    p0 ~ P**(1/3)); where the contact's own load or p0 is 0 or beyond a double, it is
+    scaled from a 1 N contact of the same bodies.
     """
     scaled_from = c
-    if yield_strength is not None and not c.load > 0:
+    if yield_strength is not None and not (0 < c.load < math.inf and 0 < c.p0 < math.inf):
         scaled_from = contact(body1, body2, load=1.0,
                               angle=math.radians(scene.get("angle_deg", 0.0)))
     out = {}

@@ -295,6 +295,19 @@ def test_no_warning_on_stderr_of_a_successful_run(argv):
     assert status == 0 and err == ""
 
 
+def test_first_yield_load_where_the_contact_load_overflows(capsys):
+    """An approach of 1e300 m overflows the load; the first-yield load, which does not
+    depend on the load, is still a number (that of the same bodies at 1000 N)."""
+    status, out, err = run(capsys, "--json", "--yield-strength=0.5", "--r2x=1e300",
+                           "--approach=1e300")
+    row = json.loads(out)["stresses"]["body1"]
+    c = hertz.contact(hertz.Body(6e-3, 6e-3, 210e9, 0.3), hertz.Body(1e300, 40e-3, 210e9, 0.3),
+                      load=1000.0)
+    assert status == 0 and err == "" and json.loads(out)["load"] is None
+    assert row["first_yield_load_von_mises"] == pytest.approx(c.first_yield_load(0.5),
+                                                              rel=1e-13)
+
+
 def test_overflow_is_said_not_printed_as_inf(capsys):
     status, out, err = run(capsys, "--yield-strength=1.7e308", "--r2x=-0.999", "--e1=1e20")
     assert status == 0 and "first yield, von Mises     overflow" in out and "inf" not in out
