@@ -548,6 +548,9 @@ def _plot_format(path: str) -> str:
     if len(suffix) < 2:
         raise _UsageError(f"--plot {path!r} has no suffix naming the format: give e.g. "
                           f"{path + '.png'!r} (the path given is the path written)")
+    folder = os.path.dirname(path)
+    if folder and not os.path.isdir(folder):
+        raise _UsageError(f"cannot write the plot {path!r}: there is no directory {folder!r}")
     return suffix[1:].lower()
 
 
