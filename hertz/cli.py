@@ -443,8 +443,8 @@ def _table(scene, body1, body2, f) -> str:
     width = max(len(name) for name, _ in rows)
     lines.extend(f"  {name:<{width}}  {value}" for name, value in rows)
     if f["a"] == 0:
-        lines.append("  zero load: no contact patch (its shape, a/b and the axes' angle, is "
-                     "that under any load)")
+        lines.append("  zero load: no contact patch; a/b, alpha and the axes' angle are those "
+                     "of the patch at any load")
     return "\n".join(lines)
 
 
