@@ -152,6 +152,13 @@ class Body:
         return (1.0 - np.square(self.nu)) / self.E
 
 
+def _read_only(*values) -> None:
+    """Make a result's numpy arrays read-only: a frozen result is not changed in place."""
+    for x in values:
+        if type(x) is np.ndarray:
+            x.flags.writeable = False
+
+
 def _semi_elliptic(p0, r2):
     """Hertz's pressure p0 sqrt(1 - r2) for r2 < 1, 0 outside (and where r2 is NaN: zero load)."""
     p = np.where(r2 < 1.0, p0 * np.sqrt(np.maximum(1.0 - r2, 0.0)), 0.0)
@@ -242,6 +249,9 @@ class Contact:
     _geometry: tuple | _Deferred = field(repr=False)
     #: Poisson's ratios (nu1, nu2) of the bodies, for the stresses
     _nu: tuple = field(repr=False)
+
+    def __post_init__(self):
+        _read_only(self.a, self.b, self.load, self.p0, self.delta, self.stiffness)
 
     ellipticity = _geometry_field(0, "a / b >= 1 [-].")
     alpha = _geometry_field(1, "Curvature ratio rho_x / rho_y >= 1 [-].")
@@ -380,6 +390,7 @@ def _solve_geometry(inputs, shape):
         return tuple(_dask_apply(_ufuncs.contact_geometry, inputs, len(_GEOMETRY_FIELDS),
                                  shape))
     fields = _ufuncs.contact_geometry(*inputs)
+    _read_only(*fields)
     return tuple(x if x.shape == shape else np.broadcast_to(x, shape) for x in fields)
 
 
@@ -415,6 +426,9 @@ class LineContact:
     load_per_length: float | np.ndarray
     #: Poisson's ratios (nu1, nu2) of the bodies, for the stresses
     _nu: tuple = field(repr=False)
+
+    def __post_init__(self):
+        _read_only(self.half_width, self.p0, self.e_star, self.rho_sum, self.load_per_length)
 
     @property
     def p_mean(self):
@@ -561,7 +575,7 @@ def contact(body1: Body, body2: Body, load=None, angle=0.0, *, approach=None,
             and (kind_a is float or kind_a is int)):
         return _ufuncs.contact(mode, body1.Rx, body1.Ry, body2.Rx, body2.Ry, angle, body1.E,
                                body1.nu, body2.E, body2.nu, value)
-    args = [body1.Rx, body1.Ry, body2.Rx, body2.Ry, _real_arg(angle, "angle"), body1.E,
+    args = [body1.Rx, body1.Ry, body2.Rx, body2.Ry, _kept_arg(angle, "angle"), body1.E,
             body1.nu, body2.E, body2.nu, _real_arg(value, name)]
     geometry = args[:9]
     if any(is_duck_array(a) for a in args):
@@ -586,6 +600,16 @@ def contact(body1: Body, body2: Body, load=None, angle=0.0, *, approach=None,
     except ValueError as exc:
         err = _first_error(_ufuncs.contact_status, _ufuncs.contact, args, shape, (mode,))
         raise (err or exc) from None
+
+
+def _kept_arg(value, name):
+    """A geometry input a Contact keeps (its geometry fields are computed later): a
+    private read-only copy of an array, so that the caller may change theirs."""
+    value = _real_arg(value, name)
+    if type(value) is np.ndarray:
+        value = value.copy()
+        value.flags.writeable = False
+    return value
 
 
 def _real_arg(value, name):
