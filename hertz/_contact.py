@@ -359,24 +359,54 @@ class Contact:
     def first_yield_load(self, yield_strength, body=1, criterion="von_mises"):
         """The load [N] at which body 1 or 2 first yields.
 
-        The stresses scale with p0 and p0 with P**(1/3) at fixed geometry, so
-        the body first yields where the largest von Mises stress (or twice
-        the largest shear stress, for ``criterion="tresca"``) reaches the
-        yield strength: P_y = P (p0_y / p0)**3, scaled from this contact's
-        own load (which must be positive).
+        The stresses scale with p0 at a fixed shape of the ellipse, so the
+        body first yields where the largest von Mises stress (or twice the
+        largest shear stress, for ``criterion="tresca"``) reaches the yield
+        strength, at a peak pressure p0_y.  The load is computed from the
+        geometry alone (Hertz's P = (8 pi / 3) lambda (E(m) p0 / (E* rho_sum))**2 p0,
+        lambda = a/b), so it does not depend on this contact's own load,
+        which may be zero or so large that it overflows.
 
         Parameters
         ----------
         yield_strength : float or array_like
-            Yield strength of the body in tension [Pa].
+            Yield strength of the body in tension [Pa], positive and finite.
         body : {1, 2}
             Which body.
         criterion : {"von_mises", "tresca"}
+            The yield criterion.
+
+        Returns
+        -------
+        float or ndarray
+            The normal force P_y [N] at which the body first yields; the
+            contact's shape broadcast with ``yield_strength``.
+
+        Raises
+        ------
+        ValueError
+            If ``yield_strength`` is not positive and finite (the message
+            names the value and, for an array, its index), ``body`` is not 1
+            or 2, or ``criterion`` is not one of the two.
+
+        Examples
+        --------
+        >>> import hertz
+        >>> ball = hertz.Body.sphere(6e-3, E=210e9, nu=0.3)
+        >>> race = hertz.Body(Rx=-6.2e-3, Ry=40e-3, E=210e9, nu=0.3)
+        >>> c = hertz.contact(ball, race, load=1500.0)
+        >>> print(f"{c.first_yield_load(1.5e9):.2f} N")
+        2969.17 N
+        >>> print(f"{c.first_yield_load(1.5e9, criterion='tresca'):.2f} N")
+        2237.12 N
+        >>> hertz.contact(ball, race, load=0.0).first_yield_load(1.5e9) == c.first_yield_load(1.5e9)
+        True
         """
         nu = _stress.poisson_of(self._nu, body)
-        unit = _stress.subsurface(self.a, self.b, 1.0, nu)  # the maxima per unit p0
+        lam = self.ellipticity
+        unit = _stress.subsurface(1.0, 1.0 / lam, 1.0, nu)  # the maxima for a = 1, p0 = 1
         p0_yield = _stress.yield_p0((unit.von_mises, unit.tau_max), yield_strength, criterion)
-        return _stress.first_yield_load(self.load, self.p0, p0_yield)
+        return _stress.load_for_p0(p0_yield, lam, self.E, self.e_star, self.rho_sum)
 
 
 from . import _stress  # noqa: E402  (the stress face uses Contact's fields only)

@@ -12,7 +12,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from . import _ufuncs
-from ._validate import as_float_array, is_duck_array
+from ._validate import as_float_array, is_duck_array, require
 
 __all__ = ["LineSubsurface", "Subsurface"]
 
@@ -147,25 +147,21 @@ def yield_p0(maxima, yield_strength, criterion: str):
     if criterion not in _CRITERIA:
         raise ValueError(f"criterion must be one of {_CRITERIA}, got {criterion!r}")
     strength = as_float_array(yield_strength, "yield_strength")
-    if not np.all((strength > 0) & np.isfinite(strength)):
-        bad = strength.reshape(-1)[int(np.argmin(((strength > 0) & np.isfinite(strength))
-                                                 .reshape(-1)))]
-        raise ValueError(f"yield_strength must be a positive, finite stress in Pa, "
-                         f"got {float(bad)!r}")
+    with np.errstate(invalid="ignore"):
+        require("yield_strength", strength, (strength > 0) & (strength < np.inf),
+                "a positive, finite stress in Pa")
     ratio = maxima[0] if criterion == "von_mises" else 2.0 * maxima[1]
     return strength / ratio
 
 
-def first_yield_load(load, p0, p0_yield):
-    """P (p0_yield / p0)**3: the load at which the peak pressure is p0_yield [N]."""
-    p0 = np.asarray(p0)
-    if not np.all(p0 > 0):
-        i = int(np.argmin((p0 > 0).reshape(-1)))
-        where = f" at index {np.unravel_index(i, p0.shape)}" if p0.ndim else ""
-        raise ValueError("the first-yield load is scaled from the contact's own load, which "
-                         f"must be > 0, got {float(np.asarray(load).reshape(-1)[i])!r}{where}")
-    ratio = p0_yield / p0
-    out = load * (ratio * ratio * ratio)
+def load_for_p0(p0, ellipticity, ellip_e, e_star, rho_sum):
+    """The load [N] that gives the peak pressure p0 [Pa] to a contact of this geometry.
+
+    From the contact formulas (a = lambda b, b = (3 E(m) P / (pi lambda E* rho_sum))**(1/3),
+    p0 = 3 P / (2 pi a b)): P = (8 pi / 3) lambda t**2 p0, t = E(m) p0 / (E* rho_sum).
+    The geometry fields alone, no cube of a pressure ratio: no overflow or underflow
+    before the result's own (the factors are grouped so that a large t meets a small p0).
+    """
+    t = (p0 / e_star) / rho_sum * ellip_e
+    out = (8.0 * np.pi / 3.0) * ((ellipticity * t) * (t * p0))
     return float(out) if np.ndim(out) == 0 else out
-
-

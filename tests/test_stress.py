@@ -12,8 +12,11 @@ import math
 import mpmath as mp
 import numpy as np
 import pytest
+from reference import contact_ref, curvatures_ref, ellipse_ref
+from reference_stress import axis_maxima_ref
 
 import hertz
+from hertz._stress import load_for_p0
 from hertz.cli import main
 
 STEEL = (210e9, 0.3)
@@ -206,6 +209,56 @@ def test_first_yield_load_reaches_the_yield_strength(criterion):
         c.first_yield_load(-1.0)
     with pytest.raises(ValueError, match="criterion must be one of"):
         c.first_yield_load(1e9, criterion="rankine")
+
+
+def test_first_yield_load_does_not_depend_on_the_contacts_own_load():
+    """Issue 18, item 4: inf at a load of 1e-310, NaN from approach=1e308. The first-yield
+    load of the default scene (1.5 GPa) against mpmath: the ellipse, E*, the curvatures and
+    the largest von Mises stress on the axis (reference.py, reference_stress.py), then
+    P = (8 pi/3) lambda (E(m) p0 / (E* rho_sum))**2 p0. Observed error 8.2e-16."""
+    ball, race = (6e-3, 6e-3, *STEEL), (-6.2e-3, 40e-3, *STEEL)
+    rho_x, rho_y = curvatures_ref(6e-3, 6e-3, -6.2e-3, 40e-3, 0.0)
+    lam, _, _, ellip_e = ellipse_ref(rho_x / rho_y)
+    e_star = 1 / (2 * (1 - mp.mpf(0.3) ** 2) / mp.mpf(210e9))
+    p0 = mp.mpf(1.5e9) / axis_maxima_ref(1, 1 / lam, 0.3, dps=25, npts=40)["von_mises"][0]
+    expected = 8 * mp.pi / 3 * lam * (ellip_e * p0 / (e_star * (rho_x + rho_y))) ** 2 * p0
+    assert float(expected) == pytest.approx(2969.17, abs=0.005)
+    b1, b2 = hertz.Body(*ball), hertz.Body(*race)
+    contacts = [hertz.contact(b1, b2, load=load) for load in (5e-324, 1e-310, 0.0, 1.0, 1500.0,
+                                                              1e300)]
+    contacts += [hertz.contact(b1, b2, approach=1e308), hertz.contact(b1, b2, p0=1e-300)]
+    with np.errstate(all="raise"):
+        loads = [c.first_yield_load(1.5e9) for c in contacts]
+    assert len(set(loads)) == 1
+    assert abs(loads[0] - expected) <= 1.2e-15 * expected
+    batch = hertz.contact(b1, b2, load=[0.0, 1e-310, 1e300]).first_yield_load([1.5e9, 3e9, 1e8])
+    assert batch[0] == loads[0] and batch[1] == pytest.approx(8 * loads[0], rel=2e-15)
+
+
+def test_load_for_a_peak_pressure_against_mpmath():
+    """The geometry-only load of first yield, P(p0), gives back p0 through the seed's
+    contact formulas in mpmath (reference.py), for random bodies, angles and pressures,
+    and for curvatures and pressures far from the usual: tiny or huge radii and p0."""
+    rng = np.random.default_rng(3)
+    scenes = []
+    for _ in range(40):
+        r1, r2 = 10 ** rng.uniform(-4, 0, 2), 10 ** rng.uniform(-4, 0, 2)
+        scenes.append(((r1[0], r1[1], 10 ** rng.uniform(9, 12), rng.uniform(-0.9, 0.5)),
+                       (r2[0], r2[1], 10 ** rng.uniform(9, 12), rng.uniform(-0.9, 0.5)),
+                       rng.uniform(-math.pi, math.pi), 10 ** rng.uniform(5, 11)))
+    # P ~ (p0 / (E* rho))**2 p0: these give 0.1 N, 1e168 N, 1e-298 N and 1e212 N
+    scenes += [((1e-200, 2e-200, *STEEL), (math.inf, math.inf, *STEEL), 0.3, 1e140),
+               ((1e200, 3e200, *STEEL), (-5e200, 1e201, *STEEL), 0.0, 1e-70),
+               ((1e-3, 2e-3, *STEEL), (math.inf, math.inf, *STEEL), 1.0, 1e-90),
+               ((1e-3, 2e-3, *STEEL), (math.inf, math.inf, *STEEL), 1.0, 1e80)]
+    worst = 0.0
+    for b1, b2, angle, p0 in scenes:
+        c = hertz.contact(hertz.Body(*b1), hertz.Body(*b2), load=0.0, angle=angle)
+        load = load_for_p0(p0, c.ellipticity, c.E, c.e_star, c.rho_sum)
+        assert 0.0 < load < math.inf
+        ref = contact_ref(b1, b2, load, angle)
+        worst = max(worst, float(abs(ref.p0 - p0) / p0))
+    assert worst <= 4e-16   # observed 2.6e-16 (the load within 3x that)
 
 
 def test_load_for_a_peak_pressure_round_trips():
