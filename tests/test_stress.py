@@ -175,6 +175,24 @@ def test_point_contact_tends_to_the_line_contact():
     assert gaps[0] > gaps[1] > gaps[2] and gaps[2] < 1e-3
 
 
+def test_stresses_at_the_end_of_the_double_range():
+    """NaN from 1e306 m (issue 18, item 4): the far field is Boussinesq's (Flamant's) force,
+    p0 (a/R)**2 (p0 b/R), here far below the smallest double or, for the line contact at
+    R = 1.4e300 m, Flamant's -(2 P'/pi) cos(theta)/R with P' = pi b p0 / 2."""
+    c = point_contact(2.0)
+    for point in ((1e306, 0.0, 1e-5), (1.7e308, -1.7e308, 1.7e308), (0.0, 0.0, 1e308)):
+        s = c.stress(*point)
+        assert np.all(s == 0.0), point
+    lc = hertz.line_contact(hertz.Body.cylinder(0.01, *STEEL), hertz.Body.plane(*STEEL), 1e5)
+    assert np.all(lc.stress(1e308, 1e-5) == 0.0)
+    s = lc.stress(1e300, 1e300)
+    # sigma_r at theta = 45 degrees; sxx = szz = sxz = sigma_r / 2, syy = nu sigma_r
+    radial = -mp.mpf(lc.half_width) * lc.p0 * mp.sqrt(0.5) / (mp.sqrt(2) * mp.mpf(1e300))
+    ref = [float(radial / 2)] * 3 + [float(radial * mp.mpf(0.3))]
+    ours = [s[0, 0], s[2, 2], s[0, 2], s[1, 1]]
+    np.testing.assert_allclose(ours, ref, rtol=7e-16)  # observed 4.3e-16
+
+
 # ----------------------------------------------------------- API and first yield
 
 def test_shapes_and_bodies():
