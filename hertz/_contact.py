@@ -297,8 +297,7 @@ class Contact:
         >>> bool(c.pressure(0.0, 0.0) == c.p0), float(c.pressure(c.a, 0.0))
         (True, 0.0)
         """
-        x = as_float_array(x, "x")
-        y = as_float_array(y, "y")
+        x, y = _stress.coordinate(x, "x", "any"), _stress.coordinate(y, "y", "any")
         with np.errstate(divide="ignore", invalid="ignore"):
             return _semi_elliptic(self.p0, np.square(x / self.a) + np.square(y / self.b))
 
@@ -467,7 +466,7 @@ class LineContact:
 
     def pressure(self, x):
         """Pressure p0 sqrt(1 - (x/b)**2) at distance x [m] across the line [Pa]."""
-        x = as_float_array(x, "x")
+        x = _stress.coordinate(x, "x", "any")
         with np.errstate(divide="ignore", invalid="ignore"):
             return _semi_elliptic(self.p0, np.square(x / self.half_width))
 

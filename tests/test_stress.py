@@ -8,6 +8,7 @@ invariants (equilibrium, surface traction, symmetry, the line-contact limit).
 
 import json
 import math
+from dataclasses import fields
 
 import mpmath as mp
 import numpy as np
@@ -212,6 +213,78 @@ def test_shapes_and_bodies():
     cylinder = hertz.contact(hertz.Body(1e-2, 1e300, *STEEL), plane, load=1.0)
     for call in (cylinder.subsurface, lambda: cylinder.stress(0.0, 0.0, cylinder.b)):
         with pytest.raises(ValueError, match=r"b/a >= 1e-70 .*use hertz.line_contact"):
+            call()
+
+
+def test_a_contact_without_load_has_no_stresses():
+    """A zero load is a valid contact (a = b = p0 = 0): every stress is 0 and the maxima
+    are 0 at the origin (the limit of a vanishing load), not a 'line contact' error."""
+    ball, plane = hertz.Body.sphere(0.01, *STEEL), hertz.Body.plane(*STEEL)
+    pair = hertz.contact(ball, plane, load=[0.0, 100.0])
+    one = hertz.contact(ball, plane, load=100.0)
+    zero = hertz.contact(ball, plane, load=0.0)
+    points = (np.array([0.0, 1e-4, -3e-4]), 2e-5, np.array([[0.0], [5e-5]]))
+    with np.errstate(all="raise"):
+        assert np.all(zero.stress(*points) == 0.0) and zero.stress(0.0, 0.0, 0.0).shape == (3, 3)
+        s = pair.stress(*(np.asarray(v)[..., None] for v in points))
+        assert np.all(s[..., 0, :, :] == 0.0)
+        np.testing.assert_array_equal(s[..., 1, :, :], one.stress(*points))
+        for m in (zero.subsurface(), zero.subsurface(2)):
+            assert all(getattr(m, f.name) == 0.0 for f in fields(m))
+        m = pair.subsurface()
+        for f in fields(m):
+            assert getattr(m, f.name)[0] == 0.0
+            assert getattr(m, f.name)[1] == getattr(one.subsurface(), f.name), f.name
+    lc = hertz.line_contact(hertz.Body.cylinder(0.01, *STEEL), plane, [0.0, 1e5])
+    lc1 = hertz.line_contact(hertz.Body.cylinder(0.01, *STEEL), plane, 1e5)
+    with np.errstate(all="raise"):
+        s = lc.stress(np.array([[0.0], [3e-5]]), 4e-5)
+        assert np.all(s[:, 0] == 0.0)
+        np.testing.assert_array_equal(s[:, 1], lc1.stress(np.array([0.0, 3e-5]), 4e-5))
+        m = lc.subsurface()
+        for f in fields(m):
+            assert getattr(m, f.name)[0] == 0.0
+            assert getattr(m, f.name)[1] == getattr(lc1.subsurface(), f.name), f.name
+
+
+@pytest.mark.parametrize("call, match", [
+    (lambda c, lc: c.stress([0.0, np.nan], 0.0, 0.0),
+     r"^x must be a finite coordinate in m, got nan at index 1$"),
+    (lambda c, lc: c.stress(0.0, [[0.0, 1.0], [np.inf, 0.0]], 0.0),
+     r"^y must be a finite coordinate in m, got inf at index \(1, 0\)$"),
+    (lambda c, lc: c.stress(0.0, 0.0, [0.0, 1e-6, -1e-6]),
+     r"^z must be a depth >= 0 in m \(finite\), got -1e-06 at index 2$"),
+    (lambda c, lc: c.stress(0.0, 0.0, np.inf), r"^z must be a depth >= 0 .*got inf$"),
+    (lambda c, lc: c.pressure(np.nan, 0.0), r"^x must be a coordinate in m \(not NaN\), got nan$"),
+    (lambda c, lc: c.pressure(0.0, [1.0, np.nan]), r"^y must be .*got nan at index 1$"),
+    (lambda c, lc: lc.pressure([np.nan]), r"^x must be a coordinate .*got nan at index 0$"),
+    (lambda c, lc: lc.stress([1.0, -np.inf], 0.0), r"^x must be .*got -inf at index 1$"),
+    (lambda c, lc: lc.stress(0.0, [0.0, -2.0]), r"^z must be .*got -2.0 at index 1$"),
+    (lambda c, lc: c.stress(0.0, 0.0, 0.0, body=1.0), r"^body must be 1 or 2, got 1.0$"),
+    (lambda c, lc: c.subsurface(body=True), r"^body must be 1 or 2, got True$"),
+    (lambda c, lc: lc.subsurface(body="2"), r"^body must be 1 or 2, got '2'$"),
+    (lambda c, lc: c.first_yield_load(1e9, body=2.0), r"^body must be 1 or 2, got 2.0$"),
+    (lambda c, lc: c.first_yield_load([1e9, np.nan]), r"yield_strength .*got nan at index 1$"),
+])
+def test_bad_points_and_bodies_name_the_parameter_value_and_index(call, match):
+    c = point_contact()
+    lc = hertz.line_contact(hertz.Body.cylinder(0.01, *STEEL), hertz.Body.plane(*STEEL), 1e5)
+    with pytest.raises(ValueError, match=match):
+        call(c, lc)
+
+
+def test_pressure_at_infinity_is_zero_and_bodies_may_be_numpy_integers():
+    c = point_contact()
+    assert c.pressure(np.inf, 0.0) == 0.0 and c.pressure(0.0, -np.inf) == 0.0
+    np.testing.assert_array_equal(c.stress(0.0, 0.0, c.a, body=np.int64(2)),
+                                  c.stress(0.0, 0.0, c.a, body=2))
+
+
+def test_a_contact_beyond_the_stress_kernels_range_is_named_by_its_index():
+    plane = hertz.Body.plane(*STEEL)
+    c = hertz.contact(hertz.Body([1e-2, 1e-2], [1e-2, 1e300], *STEEL), plane, load=1.0)
+    for call in (c.subsurface, lambda: c.stress(0.0, 0.0, 1e-6)):
+        with pytest.raises(ValueError, match=r"b/a >= 1e-70 .*line_contact.*at index 1$"):
             call()
 
 
