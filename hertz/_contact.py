@@ -19,6 +19,7 @@ from ._validate import (
     broadcast_shape,
     error_at,
     first_failure,
+    int_to_float,
     is_duck_array,
     with_index,
 )
@@ -44,7 +45,7 @@ def _real(value, name: str):
     if kind is float:
         return value
     if kind is int:
-        return float(value)
+        return int_to_float(value, name)
     if is_duck_array(value):
         return value
     arr = as_float_array(value, name)
@@ -602,8 +603,12 @@ def contact(body1: Body, body2: Body, load=None, angle=0.0, *, approach=None,
     kind_v, kind_a = type(value), type(angle)
     if (body1._scalar and body2._scalar and (kind_v is float or kind_v is int)
             and (kind_a is float or kind_a is int)):
-        return _ufuncs.contact(mode, body1.Rx, body1.Ry, body2.Rx, body2.Ry, angle, body1.E,
-                               body1.nu, body2.E, body2.nu, value)
+        try:
+            return _ufuncs.contact(mode, body1.Rx, body1.Ry, body2.Rx, body2.Ry, angle,
+                                   body1.E, body1.nu, body2.E, body2.nu, value)
+        except OverflowError:  # a Python int beyond the double range: name it
+            int_to_float(value, name), int_to_float(angle, "angle")
+            raise
     args = [body1.Rx, body1.Ry, body2.Rx, body2.Ry, _kept_arg(angle, "angle"), body1.E,
             body1.nu, body2.E, body2.nu, _real_arg(value, name)]
     geometry = args[:9]
@@ -684,6 +689,8 @@ def line_contact(body1: Body, body2: Body, load_per_length) -> LineContact:
     _check_body(body2, "body2")
     kind = type(load_per_length)
     if body1._scalar and body2._scalar and (kind is float or kind is int):
+        if kind is int:
+            load_per_length = int_to_float(load_per_length, "load_per_length")
         return LineContact(*_ufuncs.line_contact(body1.Rx, body1.Ry, body2.Rx, body2.Ry,
                                                  body1.E, body1.nu, body2.E, body2.nu,
                                                  load_per_length), (body1.nu, body2.nu))

@@ -317,3 +317,55 @@ def test_a_line_contacts_arrays_are_read_only():
         assert isinstance(value, np.ndarray) and not value.flags.writeable, name
         with pytest.raises(ValueError, match="read-only"):
             value[0] = 1.0
+
+
+# ------------------------------------------- ints beyond the doubles, masked arrays (item 9)
+
+BIG = "must be within the range of a double \\(magnitude at most 1.7976931348623157e308\\)"
+
+
+@pytest.mark.parametrize("call, match", [
+    (lambda: hertz.Body.sphere(10**309, **STEEL), rf"^Rx {BIG}, got the int 1\.000e\+309$"),
+    (lambda: hertz.Body(1.0, 1.0, -(10**400), 0.3), rf"^E {BIG}, got the int -1\.000e\+400$"),
+    (lambda: hertz.Body.sphere([0.1, 3 * 10**5000], **STEEL),
+     rf"^Rx {BIG}, got the int 3\.000e\+5000 at index 1$"),
+    (lambda: hertz.contact(hertz.Body.sphere(0.01, **STEEL), hertz.Body.plane(**STEEL),
+                           load=10**309), rf"^load {BIG}, got the int 1\.000e\+309$"),
+    (lambda: hertz.contact(hertz.Body.sphere(0.01, **STEEL), hertz.Body.plane(**STEEL),
+                           load=1.0, angle=2**1024), rf"^angle {BIG}, got the int 1\.798e\+308$"),
+    (lambda: hertz.contact(hertz.Body.sphere(0.01, **STEEL), hertz.Body.plane(**STEEL),
+                           approach=[[1e-6], [10**309]]),
+     rf"^approach {BIG}, got the int 1\.000e\+309 at index \(1, 0\)$"),
+    (lambda: hertz.line_contact(hertz.Body.cylinder(0.01, **STEEL), hertz.Body.plane(**STEEL),
+                                10**320), rf"^load_per_length {BIG}, got the int 1\.000e\+320$"),
+    (lambda: hertz.contact(hertz.Body.sphere(0.01, **STEEL), hertz.Body.plane(**STEEL),
+                           load=1.0).stress(0.0, 0.0, [0, 10**309]), rf"^z {BIG}.* at index 1$"),
+])
+def test_ints_beyond_the_double_range_are_named(call, match):
+    with pytest.raises(ValueError, match=match):
+        call()
+
+
+def test_ints_of_more_than_64_bits_within_the_double_range_are_numbers():
+    ball, plane = hertz.Body.sphere(0.01, **STEEL), hertz.Body.plane(**STEEL)
+    c = hertz.contact(ball, plane, load=[1, 10**20, 2**70])
+    np.testing.assert_array_equal(c.load, [1.0, 1e20, 2.0**70])
+    assert c.a[1] == hertz.contact(ball, plane, load=1e20).a
+    assert hertz.Body.sphere([10**30], **STEEL).Rx[0] == 1e30
+    with pytest.raises(TypeError, match="load must be a real number"):
+        hertz.contact(ball, plane, load=[True, 10**20])
+
+
+@pytest.mark.parametrize("make", [
+    lambda m: hertz.Body(m, 0.01, **STEEL),
+    lambda m: hertz.contact(hertz.Body.sphere(0.01, **STEEL), hertz.Body.plane(**STEEL), load=m),
+    lambda m: hertz.contact(hertz.Body(0.01, 0.02, **STEEL), hertz.Body.plane(**STEEL), load=1.0,
+                            angle=m),
+    lambda m: hertz.line_contact(hertz.Body.cylinder(0.01, **STEEL), hertz.Body.plane(**STEEL), m),
+    lambda m: hertz.contact(hertz.Body.sphere(0.01, **STEEL), hertz.Body.plane(**STEEL),
+                            load=1.0).pressure(m, 0.0),
+])
+def test_masked_arrays_are_refused_not_unmasked_silently(make):
+    masked = np.ma.masked_array([0.01, -1.0], mask=[False, True])
+    with pytest.raises(TypeError, match=r"masked array.*\.filled\(value\).*\.compressed"):
+        make(masked)
