@@ -134,17 +134,98 @@ class Body:
 
     @classmethod
     def sphere(cls, R, E, nu) -> Body:
-        """A sphere of radius ``R`` [m] (negative: a spherical cup)."""
+        """A sphere (or a spherical cup) near its contact point.
+
+        Parameters
+        ----------
+        R : float or array_like
+            Radius [m]: positive for a ball, negative for a spherical cup
+            (the concave seat of a ball joint), nonzero.
+        E : float or array_like
+            Young's modulus [Pa], positive and finite.
+        nu : float or array_like
+            Poisson's ratio [-], in (-1, 0.5].
+
+        Returns
+        -------
+        Body
+            ``Body(R, R, E, nu)``.
+
+        Examples
+        --------
+        >>> import hertz
+        >>> hertz.Body.sphere(5e-3, E=210e9, nu=0.3)
+        Body(Rx=0.005, Ry=0.005, E=210000000000.0, nu=0.3)
+        >>> hertz.Body.sphere([5e-3, -20e-3], E=210e9, nu=0.3).Rx  # a ball and a cup
+        array([ 0.005, -0.02 ])
+        """
         return cls(R, R, E, nu)
 
     @classmethod
     def cylinder(cls, R, E, nu) -> Body:
-        """A cylinder of radius ``R`` [m] with its axis along the body's y axis."""
+        """A circular cylinder (or a cylindrical groove) near its contact point.
+
+        The cylinder's axis lies along the body's own y axis: it is curved
+        along x (``Rx = R``) and straight along y (``Ry = inf``).  Two
+        cylinders with parallel axes make a line contact
+        (:func:`line_contact`); crossed at an angle, a point contact
+        (:func:`contact` with ``angle``).
+
+        Parameters
+        ----------
+        R : float or array_like
+            Radius [m]: positive for a roller, negative for a cylindrical
+            groove, nonzero.
+        E : float or array_like
+            Young's modulus [Pa], positive and finite.
+        nu : float or array_like
+            Poisson's ratio [-], in (-1, 0.5].
+
+        Returns
+        -------
+        Body
+            ``Body(R, inf, E, nu)``.
+
+        Examples
+        --------
+        >>> import math
+        >>> import hertz
+        >>> roller = hertz.Body.cylinder(0.01, E=210e9, nu=0.3)
+        >>> roller
+        Body(Rx=0.01, Ry=inf, E=210000000000.0, nu=0.3)
+        >>> c = hertz.contact(roller, roller, load=100.0, angle=math.pi / 2)  # crossed
+        >>> print(f"a = b = {c.a * 1e3:.4f} mm")
+        a = b = 0.1866 mm
+        """
         return cls(R, math.inf, E, nu)
 
     @classmethod
     def plane(cls, E, nu) -> Body:
-        """A flat surface (an elastic half-space)."""
+        """A flat surface: an elastic half-space.
+
+        Parameters
+        ----------
+        E : float or array_like
+            Young's modulus [Pa], positive and finite.
+        nu : float or array_like
+            Poisson's ratio [-], in (-1, 0.5].
+
+        Returns
+        -------
+        Body
+            ``Body(inf, inf, E, nu)``; a plane against a plane has no Hertz
+            contact.
+
+        Examples
+        --------
+        >>> import hertz
+        >>> flat = hertz.Body.plane(E=70e9, nu=0.33)
+        >>> flat
+        Body(Rx=inf, Ry=inf, E=70000000000.0, nu=0.33)
+        >>> ball = hertz.Body.sphere(0.01, E=210e9, nu=0.3)
+        >>> print(f"{hertz.contact(ball, flat, load=10.0).p0 / 1e6:.1f} MPa")
+        405.1 MPa
+        """
         return cls(math.inf, math.inf, E, nu)
 
     @property
@@ -198,7 +279,9 @@ class Contact:
 
     The ellipse frame has x along the major axis (semi-axis ``a``) and y
     along the minor axis (semi-axis ``b``).  Array fields are the contact's
-    own arrays.  The fields that depend on the geometry alone (from
+    own read-only arrays (changing an input array afterwards changes
+    nothing).  A zero load is a contact too: a = b = p0 = delta = 0, with
+    zero stresses.  The fields that depend on the geometry alone (from
     ``ellipticity`` to ``major_axis_angle``) are computed by a second
     compiled pass the first time one of them is read, so that a batch of
     contacts costs the memory and time of the six load-dependent fields
@@ -238,6 +321,27 @@ class Contact:
         Mean pressure P / area = 2 p0 / 3 [Pa].
     area : float or ndarray
         Contact area pi a b [m**2].
+
+    See Also
+    --------
+    contact : the function that makes a Contact.
+
+    Examples
+    --------
+    A steel ball of radius 10 mm on a steel plane, 100 N (the closed forms
+    are a = (3 P R / (4 E*))**(1/3), p0 = 3 P / (2 pi a**2)):
+
+    >>> import hertz
+    >>> ball = hertz.Body.sphere(0.01, E=210e9, nu=0.3)
+    >>> c = hertz.contact(ball, hertz.Body.plane(E=210e9, nu=0.3), load=100.0)
+    >>> print(f"a = {c.a * 1e6:.2f} um, p0 = {c.p0 / 1e9:.4f} GPa, "
+    ...       f"delta = {c.delta * 1e6:.4f} um")
+    a = 186.63 um, p0 = 1.3709 GPa, delta = 3.4829 um
+    >>> print(f"E* = {c.e_star / 1e9:.3f} GPa, rho_x = {c.rho_x:.1f} 1/m, "
+    ...       f"stiffness = {c.stiffness / 1e6:.2f} N/um")
+    E* = 115.385 GPa, rho_x = 100.0 1/m, stiffness = 43.07 N/um
+    >>> c.ellipticity, c.major_axis_angle  # a circle
+    (1.0, 0.0)
     """
 
     a: float | np.ndarray
@@ -287,8 +391,26 @@ class Contact:
     def pressure(self, x, y):
         """Contact pressure at (x, y) in the ellipse frame [Pa].
 
-        p0 sqrt(1 - (x/a)**2 - (y/b)**2) inside the ellipse, 0 outside; x, y
-        [m] broadcast against each other and against the contact's shape.
+        p0 sqrt(1 - (x/a)**2 - (y/b)**2) inside the ellipse, 0 outside (and
+        everywhere for a zero load).
+
+        Parameters
+        ----------
+        x, y : float or array_like
+            Position on the surface [m], x along the major axis, y along the
+            minor axis; they broadcast against each other and against the
+            contact's shape.  Infinite values are allowed (pressure 0).
+
+        Returns
+        -------
+        float or ndarray
+            The pressure [Pa], >= 0.
+
+        Raises
+        ------
+        ValueError
+            If a coordinate is NaN (the message names it, its value and, for
+            an array, its index).
 
         Examples
         --------
@@ -322,6 +444,15 @@ class Contact:
         -------
         ndarray, shape (..., 3, 3)
             The stress tensor, tension positive, rows and columns x, y, z.
+            A contact without load has zero stresses.
+
+        Raises
+        ------
+        ValueError
+            If a coordinate is not finite or a depth is negative (the message
+            names it, its value and, for an array, its index), ``body`` is
+            not 1 or 2, or the ellipse is longer than the kernels' range
+            (b/a < 1e-70: a line contact).
 
         Examples
         --------
@@ -338,12 +469,24 @@ class Contact:
     def subsurface(self, body=1) -> _stress.Subsurface:
         """The largest stresses below the contact in body 1 or 2 and where they are.
 
+        Parameters
+        ----------
+        body : {1, 2}
+            Which body (the stresses depend on its Poisson's ratio).
+
         Returns
         -------
         Subsurface
             tau_max, von_mises (with their depths), the orthogonal shear
             stress tau_orthogonal and the surface tension at the edge, in Pa
-            and m.
+            and m.  For a contact without load every field is 0 (the maxima
+            shrink to the surface's origin with the load).
+
+        Raises
+        ------
+        ValueError
+            If ``body`` is not 1 or 2, or the ellipse is longer than the
+            kernels' range (b/a < 1e-70: a line contact).
 
         Examples
         --------
@@ -446,7 +589,17 @@ class LineContact:
     Notes
     -----
     The approach of a line contact depends on the size of the bodies, not
-    only on the contact, and is not given.
+    only on the contact, and is not given.  Array fields are the contact's
+    own read-only arrays.
+
+    Examples
+    --------
+    >>> import hertz
+    >>> roller = hertz.Body.cylinder(5e-3, E=210e9, nu=0.3)
+    >>> lc = hertz.line_contact(roller, hertz.Body.plane(E=210e9, nu=0.3), 1e5)
+    >>> print(f"b = {lc.half_width * 1e6:.2f} um, p0 = {lc.p0 / 1e9:.4f} GPa, "
+    ...       f"p_mean = {lc.p_mean / 1e9:.4f} GPa")
+    b = 74.28 um, p0 = 0.8571 GPa, p_mean = 0.6731 GPa
     """
 
     half_width: float | np.ndarray
@@ -466,23 +619,119 @@ class LineContact:
         return self.p0 * (0.25 * math.pi)
 
     def pressure(self, x):
-        """Pressure p0 sqrt(1 - (x/b)**2) at distance x [m] across the line [Pa]."""
+        """Contact pressure at a distance x across the line [Pa].
+
+        p0 sqrt(1 - (x/b)**2) for |x| < b (b the half-width), 0 outside
+        (and everywhere for a zero load).
+
+        Parameters
+        ----------
+        x : float or array_like
+            Distance across the contact line [m]; it broadcasts against the
+            contact's shape.  Infinite values are allowed (pressure 0).
+
+        Returns
+        -------
+        float or ndarray
+            The pressure [Pa], >= 0.
+
+        Raises
+        ------
+        ValueError
+            If x is NaN (the message gives the value and, for an array, its
+            index).
+
+        Examples
+        --------
+        >>> import hertz
+        >>> roller = hertz.Body.cylinder(5e-3, E=210e9, nu=0.3)
+        >>> lc = hertz.line_contact(roller, hertz.Body.plane(E=210e9, nu=0.3), 1e5)
+        >>> lc.pressure([0.0, 0.6 * lc.half_width, lc.half_width]) / lc.p0
+        array([1. , 0.8, 0. ])
+        """
         x = _stress.coordinate(x, "x", "any")
         with np.errstate(divide="ignore", invalid="ignore"):
             return _semi_elliptic(self.p0, np.square(x / self.half_width))
 
     def stress(self, x, z, body=1):
-        """Stress tensor [Pa] in body 1 or 2 below the line contact (plane strain).
+        """Cauchy stress tensor [Pa] in body 1 or 2 below the line contact.
 
-        McEwen's closed forms (1949); x across the strip, z >= 0 the depth
-        [m], the contact line along y.  Returns shape (..., 3, 3), rows and
-        columns x, y, z, tension positive; sigma_yy = nu (sigma_xx + sigma_zz).
+        McEwen's closed forms (1949; Johnson, *Contact Mechanics*, sec. 4.2)
+        in plane strain, frictionless normal contact, with the body's own
+        Poisson's ratio.
+
+        Parameters
+        ----------
+        x, z : float or array_like
+            Position [m]: x across the strip, z >= 0 the depth into the
+            body; the contact line runs along y.  They broadcast with each
+            other and with the contact's shape.
+        body : {1, 2}
+            Which body.
+
+        Returns
+        -------
+        ndarray, shape (..., 3, 3)
+            The stress tensor, tension positive, rows and columns x, y, z;
+            sigma_yy = nu (sigma_xx + sigma_zz) and the shear stresses with y
+            are 0.  A contact without load has zero stresses.
+
+        Raises
+        ------
+        ValueError
+            If a coordinate is not finite or a depth is negative (the message
+            names it, its value and, for an array, its index), or ``body``
+            is not 1 or 2.
+
+        Examples
+        --------
+        Below the centre, at the depth of the largest shear stress:
+
+        >>> import hertz
+        >>> roller = hertz.Body.cylinder(5e-3, E=210e9, nu=0.3)
+        >>> lc = hertz.line_contact(roller, hertz.Body.plane(E=210e9, nu=0.3), 1e5)
+        >>> s = lc.stress(0.0, 0.786 * lc.half_width) / lc.p0
+        >>> print(f"sxx = {s[0, 0]:.4f}, syy = {s[1, 1]:.4f}, szz = {s[2, 2]:.4f} (p0)")
+        sxx = -0.1856, syy = -0.2916, szz = -0.7862 (p0)
+        >>> print(f"tau = {(s[0, 0] - s[2, 2]) / 2:.4f} p0")
+        tau = 0.3003 p0
         """
         return _stress.line_stress(self.half_width, self.p0,
                                    _stress.poisson_of(self._nu, body), x, z)
 
     def subsurface(self, body=1) -> _stress.LineSubsurface:
-        """The largest stresses below the line contact in body 1 or 2 and where they are."""
+        """The largest stresses below the line contact in body 1 or 2 and where they are.
+
+        Parameters
+        ----------
+        body : {1, 2}
+            Which body (the out-of-plane stress depends on its Poisson's
+            ratio).
+
+        Returns
+        -------
+        LineSubsurface
+            tau_max and von_mises with their depths, and the largest
+            |tau_xz| with its position, in Pa and m.  For a contact without
+            load every field is 0.
+
+        Raises
+        ------
+        ValueError
+            If ``body`` is not 1 or 2.
+
+        Examples
+        --------
+        >>> import hertz
+        >>> roller = hertz.Body.cylinder(5e-3, E=210e9, nu=0.3)
+        >>> lc = hertz.line_contact(roller, hertz.Body.plane(E=210e9, nu=0.3), 1e5)
+        >>> m = lc.subsurface()
+        >>> print(f"{m.tau_max / lc.p0:.4f} p0 at z = {m.z_tau_max / lc.half_width:.4f} b")
+        0.3003 p0 at z = 0.7862 b
+        >>> print(f"von Mises {m.von_mises / lc.p0:.4f} p0 at z = "
+        ...       f"{m.z_von_mises / lc.half_width:.4f} b")
+        von Mises 0.5575 p0 at z = 0.7043 b
+        """
         return _stress.line_subsurface(self.half_width, self.p0,
                                        _stress.poisson_of(self._nu, body))
 
