@@ -7,12 +7,20 @@ lengths, and wraps the maxima in :class:`Subsurface`.
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass
 
 import numpy as np
 
 from . import _ufuncs
-from ._validate import as_float_array, first_failure, is_duck_array, require, with_index
+from ._validate import (
+    as_float_array,
+    first_failure,
+    int_to_float,
+    is_duck_array,
+    require,
+    with_index,
+)
 
 __all__ = ["LineSubsurface", "Subsurface"]
 
@@ -93,18 +101,30 @@ def _scalar_or_array(x):
     return float(x) if np.ndim(x) == 0 and not is_duck_array(x) else x
 
 
-def coordinate(value, name: str, kind: str = "finite") -> np.ndarray:
-    """A point's coordinate [m] as a float64 array; NaN (and, unless ``kind`` is
-    "any", an infinite value or, for "depth", a negative one) raises the ValueError
+_COORDINATE = {"any": "a coordinate in m (not NaN)", "finite": "a finite coordinate in m",
+               "depth": "a depth >= 0 in m (finite)"}
+
+
+def coordinate(value, name: str, kind: str = "finite"):
+    """A point's coordinate [m], a numpy float64 or array; NaN (and, unless ``kind``
+    is "any", an infinite value or, for "depth", a negative one) raises the ValueError
     naming the parameter, the value and its index."""
+    if type(value) is float or type(value) is int:
+        value = float(value) if type(value) is float else int_to_float(value, name)
+        if not (value == value and (kind == "any" or abs(value) < math.inf)
+                and (kind != "depth" or value >= 0.0)):
+            raise ValueError(f"{name} must be {_COORDINATE[kind]}, got {value!r}")
+        return np.float64(value)  # (x / a of a zero-load contact: inf, not ZeroDivisionError)
     arr = as_float_array(value, name)
-    with np.errstate(invalid="ignore"):
-        if kind == "any":
-            require(name, arr, arr == arr, "a coordinate in m (not NaN)")
-        elif kind == "depth":
-            require(name, arr, (arr >= 0) & (arr < np.inf), "a depth >= 0 in m (finite)")
-        else:
-            require(name, arr, np.abs(arr) < np.inf, "a finite coordinate in m")
+    if kind == "any":
+        good = not np.isnan(arr).any()
+    else:
+        good = bool(np.isfinite(arr).all()) and (kind != "depth" or not (arr < 0).any())
+    if not good:
+        with np.errstate(invalid="ignore"):
+            ok = (arr == arr if kind == "any" else np.abs(arr) < np.inf) & (
+                arr >= 0 if kind == "depth" else True)
+        require(name, arr, ok, _COORDINATE[kind])
     return arr
 
 

@@ -226,6 +226,7 @@ def test_a_contact_without_load_has_no_stresses():
     points = (np.array([0.0, 1e-4, -3e-4]), 2e-5, np.array([[0.0], [5e-5]]))
     with np.errstate(all="raise"):
         assert np.all(zero.stress(*points) == 0.0) and zero.stress(0.0, 0.0, 0.0).shape == (3, 3)
+        assert zero.pressure(0.0, 0.0) == 0.0 and zero.pressure(1, np.inf) == 0.0
         s = pair.stress(*(np.asarray(v)[..., None] for v in points))
         assert np.all(s[..., 0, :, :] == 0.0)
         np.testing.assert_array_equal(s[..., 1, :, :], one.stress(*points))
@@ -238,6 +239,8 @@ def test_a_contact_without_load_has_no_stresses():
     lc = hertz.line_contact(hertz.Body.cylinder(0.01, *STEEL), plane, [0.0, 1e5])
     lc1 = hertz.line_contact(hertz.Body.cylinder(0.01, *STEEL), plane, 1e5)
     with np.errstate(all="raise"):
+        lc0 = hertz.line_contact(hertz.Body.cylinder(0.01, *STEEL), plane, 0.0)
+        assert lc0.pressure(0.0) == 0.0 and np.all(lc0.stress(0.0, 0.0) == 0.0)
         s = lc.stress(np.array([[0.0], [3e-5]]), 4e-5)
         assert np.all(s[:, 0] == 0.0)
         np.testing.assert_array_equal(s[:, 1], lc1.stress(np.array([0.0, 3e-5]), 4e-5))
