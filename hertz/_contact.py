@@ -95,11 +95,13 @@ class Body:
     Raises
     ------
     TypeError
-        If a field is not real-valued numeric data.
+        If a field is not real-valued numeric data, or is a numpy masked
+        array (pass ``.filled(value)`` or ``.compressed()``: masks are not
+        applied).
     ValueError
-        If a radius is 0 or NaN, E is not positive and finite, or nu is
-        outside (-1, 0.5] (the message names the field, the value and, for
-        an array, its index).
+        If a radius is 0 or NaN, E is not positive and finite, nu is
+        outside (-1, 0.5], or a Python int is beyond the double range (the
+        message names the field, the value and, for an array, its index).
 
     Examples
     --------

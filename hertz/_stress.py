@@ -32,7 +32,8 @@ class Subsurface:
     """The largest stresses below a point contact, in one body.
 
     Stresses in Pa, positions in m in the ellipse frame (x along the major
-    axis a, y along the minor axis b, z the depth below the surface).
+    axis a, y along the minor axis b, z the depth below the surface).  For a
+    contact without load every field is 0.
 
     Attributes
     ----------
