@@ -19,6 +19,7 @@ from ._validate import (
     broadcast_shape,
     error_at,
     first_failure,
+    int_to_float,
     is_duck_array,
     with_index,
 )
@@ -44,7 +45,7 @@ def _real(value, name: str):
     if kind is float:
         return value
     if kind is int:
-        return float(value)
+        return int_to_float(value, name)
     if is_duck_array(value):
         return value
     arr = as_float_array(value, name)
@@ -94,11 +95,13 @@ class Body:
     Raises
     ------
     TypeError
-        If a field is not real-valued numeric data.
+        If a field is not real-valued numeric data, or is a numpy masked
+        array (pass ``.filled(value)`` or ``.compressed()``: masks are not
+        applied).
     ValueError
-        If a radius is 0 or NaN, E is not positive and finite, or nu is
-        outside (-1, 0.5] (the message names the field, the value and, for
-        an array, its index).
+        If a radius is 0 or NaN, E is not positive and finite, nu is
+        outside (-1, 0.5], or a Python int is beyond the double range (the
+        message names the field, the value and, for an array, its index).
 
     Examples
     --------
@@ -133,23 +136,111 @@ class Body:
 
     @classmethod
     def sphere(cls, R, E, nu) -> Body:
-        """A sphere of radius ``R`` [m] (negative: a spherical cup)."""
+        """A sphere (or a spherical cup) near its contact point.
+
+        Parameters
+        ----------
+        R : float or array_like
+            Radius [m]: positive for a ball, negative for a spherical cup
+            (the concave seat of a ball joint), nonzero.
+        E : float or array_like
+            Young's modulus [Pa], positive and finite.
+        nu : float or array_like
+            Poisson's ratio [-], in (-1, 0.5].
+
+        Returns
+        -------
+        Body
+            ``Body(R, R, E, nu)``.
+
+        Examples
+        --------
+        >>> import hertz
+        >>> hertz.Body.sphere(5e-3, E=210e9, nu=0.3)
+        Body(Rx=0.005, Ry=0.005, E=210000000000.0, nu=0.3)
+        >>> hertz.Body.sphere([5e-3, -20e-3], E=210e9, nu=0.3).Rx  # a ball and a cup
+        array([ 0.005, -0.02 ])
+        """
         return cls(R, R, E, nu)
 
     @classmethod
     def cylinder(cls, R, E, nu) -> Body:
-        """A cylinder of radius ``R`` [m] with its axis along the body's y axis."""
+        """A circular cylinder (or a cylindrical groove) near its contact point.
+
+        The cylinder's axis lies along the body's own y axis: it is curved
+        along x (``Rx = R``) and straight along y (``Ry = inf``).  Two
+        cylinders with parallel axes make a line contact
+        (:func:`line_contact`); crossed at an angle, a point contact
+        (:func:`contact` with ``angle``).
+
+        Parameters
+        ----------
+        R : float or array_like
+            Radius [m]: positive for a roller, negative for a cylindrical
+            groove, nonzero.
+        E : float or array_like
+            Young's modulus [Pa], positive and finite.
+        nu : float or array_like
+            Poisson's ratio [-], in (-1, 0.5].
+
+        Returns
+        -------
+        Body
+            ``Body(R, inf, E, nu)``.
+
+        Examples
+        --------
+        >>> import math
+        >>> import hertz
+        >>> roller = hertz.Body.cylinder(0.01, E=210e9, nu=0.3)
+        >>> roller
+        Body(Rx=0.01, Ry=inf, E=210000000000.0, nu=0.3)
+        >>> c = hertz.contact(roller, roller, load=100.0, angle=math.pi / 2)  # crossed
+        >>> print(f"a = b = {c.a * 1e3:.4f} mm")
+        a = b = 0.1866 mm
+        """
         return cls(R, math.inf, E, nu)
 
     @classmethod
     def plane(cls, E, nu) -> Body:
-        """A flat surface (an elastic half-space)."""
+        """A flat surface: an elastic half-space.
+
+        Parameters
+        ----------
+        E : float or array_like
+            Young's modulus [Pa], positive and finite.
+        nu : float or array_like
+            Poisson's ratio [-], in (-1, 0.5].
+
+        Returns
+        -------
+        Body
+            ``Body(inf, inf, E, nu)``; a plane against a plane has no Hertz
+            contact.
+
+        Examples
+        --------
+        >>> import hertz
+        >>> flat = hertz.Body.plane(E=70e9, nu=0.33)
+        >>> flat
+        Body(Rx=inf, Ry=inf, E=70000000000.0, nu=0.33)
+        >>> ball = hertz.Body.sphere(0.01, E=210e9, nu=0.3)
+        >>> print(f"{hertz.contact(ball, flat, load=10.0).p0 / 1e6:.1f} MPa")
+        405.1 MPa
+        """
         return cls(math.inf, math.inf, E, nu)
 
     @property
     def compliance(self):
         """(1 - nu**2)/E [1/Pa], the body's share of 1/E*."""
         return (1.0 - np.square(self.nu)) / self.E
+
+
+def _read_only(*values) -> None:
+    """Make a result's numpy arrays read-only: a frozen result is not changed in place."""
+    for x in values:
+        if type(x) is np.ndarray:
+            x.flags.writeable = False
 
 
 def _semi_elliptic(p0, r2):
@@ -190,7 +281,9 @@ class Contact:
 
     The ellipse frame has x along the major axis (semi-axis ``a``) and y
     along the minor axis (semi-axis ``b``).  Array fields are the contact's
-    own arrays.  The fields that depend on the geometry alone (from
+    own read-only arrays (changing an input array afterwards changes
+    nothing).  A zero load is a contact too: a = b = p0 = delta = 0, with
+    zero stresses.  The fields that depend on the geometry alone (from
     ``ellipticity`` to ``major_axis_angle``) are computed by a second
     compiled pass the first time one of them is read, so that a batch of
     contacts costs the memory and time of the six load-dependent fields
@@ -230,6 +323,27 @@ class Contact:
         Mean pressure P / area = 2 p0 / 3 [Pa].
     area : float or ndarray
         Contact area pi a b [m**2].
+
+    See Also
+    --------
+    contact : the function that makes a Contact.
+
+    Examples
+    --------
+    A steel ball of radius 10 mm on a steel plane, 100 N (the closed forms
+    are a = (3 P R / (4 E*))**(1/3), p0 = 3 P / (2 pi a**2)):
+
+    >>> import hertz
+    >>> ball = hertz.Body.sphere(0.01, E=210e9, nu=0.3)
+    >>> c = hertz.contact(ball, hertz.Body.plane(E=210e9, nu=0.3), load=100.0)
+    >>> print(f"a = {c.a * 1e6:.2f} um, p0 = {c.p0 / 1e9:.4f} GPa, "
+    ...       f"delta = {c.delta * 1e6:.4f} um")
+    a = 186.63 um, p0 = 1.3709 GPa, delta = 3.4829 um
+    >>> print(f"E* = {c.e_star / 1e9:.3f} GPa, rho_x = {c.rho_x:.1f} 1/m, "
+    ...       f"stiffness = {c.stiffness / 1e6:.2f} N/um")
+    E* = 115.385 GPa, rho_x = 100.0 1/m, stiffness = 43.07 N/um
+    >>> c.ellipticity, c.major_axis_angle  # a circle
+    (1.0, 0.0)
     """
 
     a: float | np.ndarray
@@ -242,6 +356,9 @@ class Contact:
     _geometry: tuple | _Deferred = field(repr=False)
     #: Poisson's ratios (nu1, nu2) of the bodies, for the stresses
     _nu: tuple = field(repr=False)
+
+    def __post_init__(self):
+        _read_only(self.a, self.b, self.load, self.p0, self.delta, self.stiffness)
 
     ellipticity = _geometry_field(0, "a / b >= 1 [-].")
     alpha = _geometry_field(1, "Curvature ratio rho_x / rho_y >= 1 [-].")
@@ -276,8 +393,26 @@ class Contact:
     def pressure(self, x, y):
         """Contact pressure at (x, y) in the ellipse frame [Pa].
 
-        p0 sqrt(1 - (x/a)**2 - (y/b)**2) inside the ellipse, 0 outside; x, y
-        [m] broadcast against each other and against the contact's shape.
+        p0 sqrt(1 - (x/a)**2 - (y/b)**2) inside the ellipse, 0 outside (and
+        everywhere for a zero load).
+
+        Parameters
+        ----------
+        x, y : float or array_like
+            Position on the surface [m], x along the major axis, y along the
+            minor axis; they broadcast against each other and against the
+            contact's shape.  Infinite values are allowed (pressure 0).
+
+        Returns
+        -------
+        float or ndarray
+            The pressure [Pa], >= 0.
+
+        Raises
+        ------
+        ValueError
+            If a coordinate is NaN (the message names it, its value and, for
+            an array, its index).
 
         Examples
         --------
@@ -287,8 +422,7 @@ class Contact:
         >>> bool(c.pressure(0.0, 0.0) == c.p0), float(c.pressure(c.a, 0.0))
         (True, 0.0)
         """
-        x = as_float_array(x, "x")
-        y = as_float_array(y, "y")
+        x, y = _stress.coordinate(x, "x", "any"), _stress.coordinate(y, "y", "any")
         with np.errstate(divide="ignore", invalid="ignore"):
             return _semi_elliptic(self.p0, np.square(x / self.a) + np.square(y / self.b))
 
@@ -312,6 +446,15 @@ class Contact:
         -------
         ndarray, shape (..., 3, 3)
             The stress tensor, tension positive, rows and columns x, y, z.
+            A contact without load has zero stresses.
+
+        Raises
+        ------
+        ValueError
+            If a coordinate is not finite or a depth is negative (the message
+            names it, its value and, for an array, its index), ``body`` is
+            not 1 or 2, or the ellipse is longer than the kernels' range
+            (b/a < 1e-70: a line contact).
 
         Examples
         --------
@@ -328,12 +471,24 @@ class Contact:
     def subsurface(self, body=1) -> _stress.Subsurface:
         """The largest stresses below the contact in body 1 or 2 and where they are.
 
+        Parameters
+        ----------
+        body : {1, 2}
+            Which body (the stresses depend on its Poisson's ratio).
+
         Returns
         -------
         Subsurface
             tau_max, von_mises (with their depths), the orthogonal shear
             stress tau_orthogonal and the surface tension at the edge, in Pa
-            and m.
+            and m.  For a contact without load every field is 0 (the maxima
+            shrink to the surface's origin with the load).
+
+        Raises
+        ------
+        ValueError
+            If ``body`` is not 1 or 2, or the ellipse is longer than the
+            kernels' range (b/a < 1e-70: a line contact).
 
         Examples
         --------
@@ -349,24 +504,54 @@ class Contact:
     def first_yield_load(self, yield_strength, body=1, criterion="von_mises"):
         """The load [N] at which body 1 or 2 first yields.
 
-        The stresses scale with p0 and p0 with P**(1/3) at fixed geometry, so
-        the body first yields where the largest von Mises stress (or twice
-        the largest shear stress, for ``criterion="tresca"``) reaches the
-        yield strength: P_y = P (p0_y / p0)**3, scaled from this contact's
-        own load (which must be positive).
+        The stresses scale with p0 at a fixed shape of the ellipse, so the
+        body first yields where the largest von Mises stress (or twice the
+        largest shear stress, for ``criterion="tresca"``) reaches the yield
+        strength, at a peak pressure p0_y.  The load is computed from the
+        geometry alone (Hertz's P = (8 pi / 3) lambda (E(m) p0 / (E* rho_sum))**2 p0,
+        lambda = a/b), so it does not depend on this contact's own load,
+        which may be zero or so large that it overflows.
 
         Parameters
         ----------
         yield_strength : float or array_like
-            Yield strength of the body in tension [Pa].
+            Yield strength of the body in tension [Pa], positive and finite.
         body : {1, 2}
             Which body.
         criterion : {"von_mises", "tresca"}
+            The yield criterion.
+
+        Returns
+        -------
+        float or ndarray
+            The normal force P_y [N] at which the body first yields; the
+            contact's shape broadcast with ``yield_strength``.
+
+        Raises
+        ------
+        ValueError
+            If ``yield_strength`` is not positive and finite (the message
+            names the value and, for an array, its index), ``body`` is not 1
+            or 2, or ``criterion`` is not one of the two.
+
+        Examples
+        --------
+        >>> import hertz
+        >>> ball = hertz.Body.sphere(6e-3, E=210e9, nu=0.3)
+        >>> race = hertz.Body(Rx=-6.2e-3, Ry=40e-3, E=210e9, nu=0.3)
+        >>> c = hertz.contact(ball, race, load=1500.0)
+        >>> print(f"{c.first_yield_load(1.5e9):.2f} N")
+        2969.17 N
+        >>> print(f"{c.first_yield_load(1.5e9, criterion='tresca'):.2f} N")
+        2237.12 N
+        >>> hertz.contact(ball, race, load=0.0).first_yield_load(1.5e9) == c.first_yield_load(1.5e9)
+        True
         """
         nu = _stress.poisson_of(self._nu, body)
-        unit = _stress.subsurface(self.a, self.b, 1.0, nu)  # the maxima per unit p0
+        lam = self.ellipticity
+        unit = _stress.subsurface(1.0, 1.0 / lam, 1.0, nu)  # the maxima for a = 1, p0 = 1
         p0_yield = _stress.yield_p0((unit.von_mises, unit.tau_max), yield_strength, criterion)
-        return _stress.first_yield_load(self.load, self.p0, p0_yield)
+        return _stress.load_for_p0(p0_yield, lam, self.E, self.e_star, self.rho_sum)
 
 
 from . import _stress  # noqa: E402  (the stress face uses Contact's fields only)
@@ -380,6 +565,7 @@ def _solve_geometry(inputs, shape):
         return tuple(_dask_apply(_ufuncs.contact_geometry, inputs, len(_GEOMETRY_FIELDS),
                                  shape))
     fields = _ufuncs.contact_geometry(*inputs)
+    _read_only(*fields)
     return tuple(x if x.shape == shape else np.broadcast_to(x, shape) for x in fields)
 
 
@@ -405,7 +591,17 @@ class LineContact:
     Notes
     -----
     The approach of a line contact depends on the size of the bodies, not
-    only on the contact, and is not given.
+    only on the contact, and is not given.  Array fields are the contact's
+    own read-only arrays.
+
+    Examples
+    --------
+    >>> import hertz
+    >>> roller = hertz.Body.cylinder(5e-3, E=210e9, nu=0.3)
+    >>> lc = hertz.line_contact(roller, hertz.Body.plane(E=210e9, nu=0.3), 1e5)
+    >>> print(f"b = {lc.half_width * 1e6:.2f} um, p0 = {lc.p0 / 1e9:.4f} GPa, "
+    ...       f"p_mean = {lc.p_mean / 1e9:.4f} GPa")
+    b = 74.28 um, p0 = 0.8571 GPa, p_mean = 0.6731 GPa
     """
 
     half_width: float | np.ndarray
@@ -416,29 +612,128 @@ class LineContact:
     #: Poisson's ratios (nu1, nu2) of the bodies, for the stresses
     _nu: tuple = field(repr=False)
 
+    def __post_init__(self):
+        _read_only(self.half_width, self.p0, self.e_star, self.rho_sum, self.load_per_length)
+
     @property
     def p_mean(self):
         """Mean pressure (pi/4) p0 [Pa]."""
         return self.p0 * (0.25 * math.pi)
 
     def pressure(self, x):
-        """Pressure p0 sqrt(1 - (x/b)**2) at distance x [m] across the line [Pa]."""
-        x = as_float_array(x, "x")
+        """Contact pressure at a distance x across the line [Pa].
+
+        p0 sqrt(1 - (x/b)**2) for |x| < b (b the half-width), 0 outside
+        (and everywhere for a zero load).
+
+        Parameters
+        ----------
+        x : float or array_like
+            Distance across the contact line [m]; it broadcasts against the
+            contact's shape.  Infinite values are allowed (pressure 0).
+
+        Returns
+        -------
+        float or ndarray
+            The pressure [Pa], >= 0.
+
+        Raises
+        ------
+        ValueError
+            If x is NaN (the message gives the value and, for an array, its
+            index).
+
+        Examples
+        --------
+        >>> import hertz
+        >>> roller = hertz.Body.cylinder(5e-3, E=210e9, nu=0.3)
+        >>> lc = hertz.line_contact(roller, hertz.Body.plane(E=210e9, nu=0.3), 1e5)
+        >>> lc.pressure([0.0, 0.6 * lc.half_width, lc.half_width]) / lc.p0
+        array([1. , 0.8, 0. ])
+        """
+        x = _stress.coordinate(x, "x", "any")
         with np.errstate(divide="ignore", invalid="ignore"):
             return _semi_elliptic(self.p0, np.square(x / self.half_width))
 
     def stress(self, x, z, body=1):
-        """Stress tensor [Pa] in body 1 or 2 below the line contact (plane strain).
+        """Cauchy stress tensor [Pa] in body 1 or 2 below the line contact.
 
-        McEwen's closed forms (1949); x across the strip, z >= 0 the depth
-        [m], the contact line along y.  Returns shape (..., 3, 3), rows and
-        columns x, y, z, tension positive; sigma_yy = nu (sigma_xx + sigma_zz).
+        McEwen's closed forms (1949; Johnson, *Contact Mechanics*, sec. 4.2)
+        in plane strain, frictionless normal contact, with the body's own
+        Poisson's ratio.
+
+        Parameters
+        ----------
+        x, z : float or array_like
+            Position [m]: x across the strip, z >= 0 the depth into the
+            body; the contact line runs along y.  They broadcast with each
+            other and with the contact's shape.
+        body : {1, 2}
+            Which body.
+
+        Returns
+        -------
+        ndarray, shape (..., 3, 3)
+            The stress tensor, tension positive, rows and columns x, y, z;
+            sigma_yy = nu (sigma_xx + sigma_zz) and the shear stresses with y
+            are 0.  A contact without load has zero stresses.
+
+        Raises
+        ------
+        ValueError
+            If a coordinate is not finite or a depth is negative (the message
+            names it, its value and, for an array, its index), or ``body``
+            is not 1 or 2.
+
+        Examples
+        --------
+        Below the centre, at the depth of the largest shear stress:
+
+        >>> import hertz
+        >>> roller = hertz.Body.cylinder(5e-3, E=210e9, nu=0.3)
+        >>> lc = hertz.line_contact(roller, hertz.Body.plane(E=210e9, nu=0.3), 1e5)
+        >>> s = lc.stress(0.0, 0.786 * lc.half_width) / lc.p0
+        >>> print(f"sxx = {s[0, 0]:.4f}, syy = {s[1, 1]:.4f}, szz = {s[2, 2]:.4f} (p0)")
+        sxx = -0.1856, syy = -0.2916, szz = -0.7862 (p0)
+        >>> print(f"tau = {(s[0, 0] - s[2, 2]) / 2:.4f} p0")
+        tau = 0.3003 p0
         """
         return _stress.line_stress(self.half_width, self.p0,
                                    _stress.poisson_of(self._nu, body), x, z)
 
     def subsurface(self, body=1) -> _stress.LineSubsurface:
-        """The largest stresses below the line contact in body 1 or 2 and where they are."""
+        """The largest stresses below the line contact in body 1 or 2 and where they are.
+
+        Parameters
+        ----------
+        body : {1, 2}
+            Which body (the out-of-plane stress depends on its Poisson's
+            ratio).
+
+        Returns
+        -------
+        LineSubsurface
+            tau_max and von_mises with their depths, and the largest
+            |tau_xz| with its position, in Pa and m.  For a contact without
+            load every field is 0.
+
+        Raises
+        ------
+        ValueError
+            If ``body`` is not 1 or 2.
+
+        Examples
+        --------
+        >>> import hertz
+        >>> roller = hertz.Body.cylinder(5e-3, E=210e9, nu=0.3)
+        >>> lc = hertz.line_contact(roller, hertz.Body.plane(E=210e9, nu=0.3), 1e5)
+        >>> m = lc.subsurface()
+        >>> print(f"{m.tau_max / lc.p0:.4f} p0 at z = {m.z_tau_max / lc.half_width:.4f} b")
+        0.3003 p0 at z = 0.7862 b
+        >>> print(f"von Mises {m.von_mises / lc.p0:.4f} p0 at z = "
+        ...       f"{m.z_von_mises / lc.half_width:.4f} b")
+        von Mises 0.5575 p0 at z = 0.7043 b
+        """
         return _stress.line_subsurface(self.half_width, self.p0,
                                        _stress.poisson_of(self._nu, body))
 
@@ -559,9 +854,13 @@ def contact(body1: Body, body2: Body, load=None, angle=0.0, *, approach=None,
     kind_v, kind_a = type(value), type(angle)
     if (body1._scalar and body2._scalar and (kind_v is float or kind_v is int)
             and (kind_a is float or kind_a is int)):
-        return _ufuncs.contact(mode, body1.Rx, body1.Ry, body2.Rx, body2.Ry, angle, body1.E,
-                               body1.nu, body2.E, body2.nu, value)
-    args = [body1.Rx, body1.Ry, body2.Rx, body2.Ry, _real_arg(angle, "angle"), body1.E,
+        try:
+            return _ufuncs.contact(mode, body1.Rx, body1.Ry, body2.Rx, body2.Ry, angle,
+                                   body1.E, body1.nu, body2.E, body2.nu, value)
+        except OverflowError:  # a Python int beyond the double range: name it
+            int_to_float(value, name), int_to_float(angle, "angle")
+            raise
+    args = [body1.Rx, body1.Ry, body2.Rx, body2.Ry, _kept_arg(angle, "angle"), body1.E,
             body1.nu, body2.E, body2.nu, _real_arg(value, name)]
     geometry = args[:9]
     if any(is_duck_array(a) for a in args):
@@ -586,6 +885,16 @@ def contact(body1: Body, body2: Body, load=None, angle=0.0, *, approach=None,
     except ValueError as exc:
         err = _first_error(_ufuncs.contact_status, _ufuncs.contact, args, shape, (mode,))
         raise (err or exc) from None
+
+
+def _kept_arg(value, name):
+    """A geometry input a Contact keeps (its geometry fields are computed later): a
+    private read-only copy of an array, so that the caller may change theirs."""
+    value = _real_arg(value, name)
+    if type(value) is np.ndarray:
+        value = value.copy()
+        value.flags.writeable = False
+    return value
 
 
 def _real_arg(value, name):
@@ -631,6 +940,8 @@ def line_contact(body1: Body, body2: Body, load_per_length) -> LineContact:
     _check_body(body2, "body2")
     kind = type(load_per_length)
     if body1._scalar and body2._scalar and (kind is float or kind is int):
+        if kind is int:
+            load_per_length = int_to_float(load_per_length, "load_per_length")
         return LineContact(*_ufuncs.line_contact(body1.Rx, body1.Ry, body2.Rx, body2.Ry,
                                                  body1.E, body1.nu, body2.E, body2.nu,
                                                  load_per_length), (body1.nu, body2.nu))

@@ -7,12 +7,20 @@ lengths, and wraps the maxima in :class:`Subsurface`.
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass
 
 import numpy as np
 
 from . import _ufuncs
-from ._validate import as_float_array, is_duck_array
+from ._validate import (
+    as_float_array,
+    first_failure,
+    int_to_float,
+    is_duck_array,
+    require,
+    with_index,
+)
 
 __all__ = ["LineSubsurface", "Subsurface"]
 
@@ -24,7 +32,8 @@ class Subsurface:
     """The largest stresses below a point contact, in one body.
 
     Stresses in Pa, positions in m in the ellipse frame (x along the major
-    axis a, y along the minor axis b, z the depth below the surface).
+    axis a, y along the minor axis b, z the depth below the surface).  For a
+    contact without load every field is 0.
 
     Attributes
     ----------
@@ -84,26 +93,84 @@ class LineSubsurface:
 
 def poisson_of(nu_pair, body) -> float | np.ndarray:
     """nu of body 1 or 2 from a contact's (nu1, nu2)."""
-    if body not in (1, 2) or isinstance(body, bool):
+    if type(body) is bool or not isinstance(body, (int, np.integer)) or body not in (1, 2):
         raise ValueError(f"body must be 1 or 2, got {body!r}")
-    return nu_pair[body - 1]
+    return nu_pair[int(body) - 1]
 
 
 def _scalar_or_array(x):
     return float(x) if np.ndim(x) == 0 and not is_duck_array(x) else x
 
 
+_COORDINATE = {"any": "a coordinate in m (not NaN)", "finite": "a finite coordinate in m",
+               "depth": "a depth >= 0 in m (finite)"}
+
+
+def coordinate(value, name: str, kind: str = "finite"):
+    """A point's coordinate [m], a numpy float64 or array; NaN (and, unless ``kind``
+    is "any", an infinite value or, for "depth", a negative one) raises the ValueError
+    naming the parameter, the value and its index."""
+    if type(value) is float or type(value) is int:
+        value = float(value) if type(value) is float else int_to_float(value, name)
+        if not (value == value and (kind == "any" or abs(value) < math.inf)
+                and (kind != "depth" or value >= 0.0)):
+            raise ValueError(f"{name} must be {_COORDINATE[kind]}, got {value!r}")
+        return np.float64(value)  # (x / a of a zero-load contact: inf, not ZeroDivisionError)
+    arr = as_float_array(value, name)
+    if kind == "any":
+        good = not np.isnan(arr).any()
+    else:
+        good = bool(np.isfinite(arr).all()) and (kind != "depth" or not (arr < 0).any())
+    if not good:
+        with np.errstate(invalid="ignore"):
+            ok = (arr == arr if kind == "any" else np.abs(arr) < np.inf) & (
+                arr >= 0 if kind == "depth" else True)
+        require(name, arr, ok, _COORDINATE[kind])
+    return arr
+
+
+def _unloaded_as_unit(a, b):
+    """(a, b) with the elements of a contact without load (a = b = 0, a valid contact
+    whose stresses are all zero) replaced by a unit circle, and where they were (or None):
+    the kernels see a valid ellipse, the results are scaled by p0 = 0 and a = 0."""
+    if type(a) is float:
+        return (1.0, 1.0, True) if a == 0.0 else (a, b, None)
+    if is_duck_array(a) or is_duck_array(b):
+        return a, b, None
+    unloaded = np.asarray(a) == 0.0
+    if not unloaded.any():
+        return a, b, None
+    return np.where(unloaded, 1.0, a), np.where(unloaded, 1.0, b), unloaded
+
+
+def _contact_index_error(exc, a, b, line):
+    """``exc`` with the index of the first contact the kernel refuses, if an array."""
+    shape = np.broadcast_shapes(np.shape(a), np.shape(b))
+    if not shape:
+        return exc
+    a, b = np.broadcast_to(a, shape), np.broadcast_to(b, shape)
+    with np.errstate(invalid="ignore", over="ignore"):
+        # the kernels' range (hertz/_stress_kernel.h, HERTZ_STRESS_EAXES)
+        ok = (b > 0) & (b < np.inf) if line else (b > 0) & (a >= b) & (a < np.inf) & (
+            b >= 1e-70 * a)
+    if ok.all():
+        return exc
+    return with_index(exc, shape, first_failure(ok))
+
+
 def point_stress(a, b, p0, nu, x, y, z):
     """The stress tensor [Pa], shape (..., 3, 3), at points (x, y, z) [m]."""
-    x, y, z = (as_float_array(v, name) for v, name in ((x, "x"), (y, "y"), (z, "z")))
-    if np.any(z < 0):
-        raise ValueError(f"z must be a depth >= 0 in m, got {float(np.min(z))!r}")
+    x, y, z = coordinate(x, "x"), coordinate(y, "y"), coordinate(z, "z", "depth")
     shape = np.broadcast_shapes(*(np.shape(v) for v in (a, b, nu, p0, x, y, z)))
+    a, b, _ = _unloaded_as_unit(a, b)
     out = np.empty(shape + (3, 3))
     # the ufunc writes the six components straight into the tensor's views
-    _ufuncs.point_stress(a, b, nu, x, y, z, out=(
-        out[..., 0, 0], out[..., 1, 1], out[..., 2, 2], out[..., 1, 2], out[..., 0, 2],
-        out[..., 0, 1]))
+    try:
+        _ufuncs.point_stress(a, b, nu, x, y, z, out=(
+            out[..., 0, 0], out[..., 1, 1], out[..., 2, 2], out[..., 1, 2], out[..., 0, 2],
+            out[..., 0, 1]))
+    except ValueError as exc:
+        raise _contact_index_error(exc, a, b, line=False) from None
     out[..., 2, 1] = out[..., 1, 2]
     out[..., 2, 0] = out[..., 0, 2]
     out[..., 1, 0] = out[..., 0, 1]
@@ -113,19 +180,27 @@ def point_stress(a, b, p0, nu, x, y, z):
 
 def subsurface(a, b, p0, nu) -> Subsurface:
     """The maxima below a point contact, scaled to Pa and m."""
-    (tau, z_tau, vm, z_vm, orth, y_orth, z_orth, tens, x_tens,
-     y_tens) = _ufuncs.subsurface(a, b, nu)
+    a, b, unloaded = _unloaded_as_unit(a, b)
+    try:
+        (tau, z_tau, vm, z_vm, orth, y_orth, z_orth, tens, x_tens,
+         y_tens) = _ufuncs.subsurface(a, b, nu)
+    except ValueError as exc:
+        raise _contact_index_error(exc, a, b, line=False) from None
+    if unloaded is not None:   # the maxima of a vanishing load are at the surface's origin
+        z_tau, z_vm, y_orth, z_orth, x_tens, y_tens = (
+            np.where(unloaded, 0.0, v) for v in (z_tau, z_vm, y_orth, z_orth, x_tens, y_tens))
     return Subsurface(*(_scalar_or_array(v) for v in (
         tau * p0, z_tau, vm * p0, z_vm, orth * p0, y_orth, z_orth, tens * p0, x_tens, y_tens)))
 
 
 def line_stress(half_width, p0, nu, x, z):
     """The stress tensor [Pa], shape (..., 3, 3), of a line contact at (x, z) [m]."""
-    x = as_float_array(x, "x")
-    z = as_float_array(z, "z")
-    if np.any(z < 0):
-        raise ValueError(f"z must be a depth >= 0 in m, got {float(np.min(z))!r}")
-    sxx, szz, sxz, syy = _ufuncs.line_stress(half_width, nu, x, z)
+    x, z = coordinate(x, "x"), coordinate(z, "z", "depth")
+    half_width, _, _ = _unloaded_as_unit(half_width, half_width)
+    try:
+        sxx, szz, sxz, syy = _ufuncs.line_stress(half_width, nu, x, z)
+    except ValueError as exc:
+        raise _contact_index_error(exc, half_width, half_width, line=True) from None
     zero = np.zeros_like(sxx)
     rows = [[sxx, zero, sxz], [zero, syy, zero], [sxz, zero, szz]]
     out = np.stack([np.stack(r, axis=-1) for r in rows], axis=-2)
@@ -133,7 +208,14 @@ def line_stress(half_width, p0, nu, x, z):
 
 
 def line_subsurface(half_width, p0, nu) -> LineSubsurface:
-    tau, z_tau, vm, z_vm, orth, x_orth, z_orth = _ufuncs.line_subsurface(half_width, nu)
+    half_width, _, unloaded = _unloaded_as_unit(half_width, half_width)
+    try:
+        tau, z_tau, vm, z_vm, orth, x_orth, z_orth = _ufuncs.line_subsurface(half_width, nu)
+    except ValueError as exc:
+        raise _contact_index_error(exc, half_width, half_width, line=True) from None
+    if unloaded is not None:
+        z_tau, z_vm, x_orth, z_orth = (np.where(unloaded, 0.0, v)
+                                       for v in (z_tau, z_vm, x_orth, z_orth))
     return LineSubsurface(*(_scalar_or_array(v) for v in (
         tau * p0, z_tau, vm * p0, z_vm, orth * p0, x_orth, z_orth)))
 
@@ -147,25 +229,21 @@ def yield_p0(maxima, yield_strength, criterion: str):
     if criterion not in _CRITERIA:
         raise ValueError(f"criterion must be one of {_CRITERIA}, got {criterion!r}")
     strength = as_float_array(yield_strength, "yield_strength")
-    if not np.all((strength > 0) & np.isfinite(strength)):
-        bad = strength.reshape(-1)[int(np.argmin(((strength > 0) & np.isfinite(strength))
-                                                 .reshape(-1)))]
-        raise ValueError(f"yield_strength must be a positive, finite stress in Pa, "
-                         f"got {float(bad)!r}")
+    with np.errstate(invalid="ignore"):
+        require("yield_strength", strength, (strength > 0) & (strength < np.inf),
+                "a positive, finite stress in Pa")
     ratio = maxima[0] if criterion == "von_mises" else 2.0 * maxima[1]
     return strength / ratio
 
 
-def first_yield_load(load, p0, p0_yield):
-    """P (p0_yield / p0)**3: the load at which the peak pressure is p0_yield [N]."""
-    p0 = np.asarray(p0)
-    if not np.all(p0 > 0):
-        i = int(np.argmin((p0 > 0).reshape(-1)))
-        where = f" at index {np.unravel_index(i, p0.shape)}" if p0.ndim else ""
-        raise ValueError("the first-yield load is scaled from the contact's own load, which "
-                         f"must be > 0, got {float(np.asarray(load).reshape(-1)[i])!r}{where}")
-    ratio = p0_yield / p0
-    out = load * (ratio * ratio * ratio)
+def load_for_p0(p0, ellipticity, ellip_e, e_star, rho_sum):
+    """The load [N] that gives the peak pressure p0 [Pa] to a contact of this geometry.
+
+    From the contact formulas (a = lambda b, b = (3 E(m) P / (pi lambda E* rho_sum))**(1/3),
+    p0 = 3 P / (2 pi a b)): P = (8 pi / 3) lambda t**2 p0, t = E(m) p0 / (E* rho_sum).
+    The geometry fields alone, no cube of a pressure ratio: no overflow or underflow
+    before the result's own (the factors are grouped so that a large t meets a small p0).
+    """
+    t = (p0 / e_star) / rho_sum * ellip_e
+    out = (8.0 * np.pi / 3.0) * ((ellipticity * t) * (t * p0))
     return float(out) if np.ndim(out) == 0 else out
-
-

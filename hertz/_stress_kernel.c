@@ -428,12 +428,15 @@ static void point_stress(double k, double nu, double x, double y, double z, doub
 
 /* Beyond 1e60 a the field is Boussinesq's for the total force (2/3) pi a b p0 to the
    last bit (the next term is of relative order (a/R)^2), written with the direction
-   cosines so that nothing overflows. Normalised: a = 1. */
-static void point_far(double k, double nu, double x, double y, double z, double out[6])
+   cosines so that nothing overflows: the point (x, y, z) is in the caller's unit, not
+   divided by a (x/a overflows for x >= 1e306 m beside a = 1e-3 m); only a/R is formed.
+   k = b/a. */
+static void point_far(double a, double k, double nu, double x, double y, double z,
+                      double out[6])
 {
     double m = fmax(fabs(x), fmax(fabs(y), fabs(z)));
     double ex = x / m, ey = y / m, ez = z / m, n = sqrt(ex * ex + ey * ey + ez * ez);
-    double R = m * n, c1 = 1.0 - 2.0 * nu, rh2, c2, sxy2, sy2, sx2, f;
+    double q = (a / m) / n, c1 = 1.0 - 2.0 * nu, rh2, c2, sxy2, sy2, sx2, f;
     ex /= n;
     ey /= n;
     ez /= n;
@@ -447,7 +450,7 @@ static void point_far(double k, double nu, double x, double y, double z, double 
         c2 = sxy2 = 0.0;
         sy2 = sx2 = 0.5;
     }
-    f = (k / 3.0) / R / R;      /* (2/3) pi k / (2 pi R^2) */
+    f = (k / 3.0) * q * q;      /* (2/3) pi k / (2 pi R^2), R in units of a */
     out[0] = f * (c1 * (c2 / (1.0 + ez) + ez * sy2) - 3.0 * ez * ex * ex);
     out[1] = f * (c1 * (-c2 / (1.0 + ez) + ez * sx2) - 3.0 * ez * ey * ey);
     out[2] = -3.0 * f * ez * ez * ez;
@@ -485,7 +488,7 @@ int hertz_point_stress(double a, double b, double nu, double x, double y, double
         return err;
     }
     if (fmax(fabs(x), fmax(fabs(y), z)) > 1e60 * a)
-        point_far(b / a, nu, x / a, y / a, z / a, out);
+        point_far(a, b / a, nu, x, y, z, out);
     else
         point_stress(b / a, nu, x / a, y / a, z / a, edge_distance(a, b, x, y), out);
     return 0;
@@ -1009,21 +1012,23 @@ int hertz_line_stress(double b, double nu, double x, double z, double out[4])
         fill_nan(out, 4);
         return HERTZ_STRESS_EDEPTH;
     }
-    X = x / b;
-    Z = z / b;
-    if (fmax(fabs(X), Z) > 1e60) {
-        /* Flamant's solution for the total force pi b p0 / 2 (exact to the last bit) */
-        double mx = fmax(fabs(X), Z), ex = X / mx, ez = Z / mx, nn = sqrt(ex * ex + ez * ez);
+    if (fmax(fabs(x), z) > 1e60 * b) {
+        /* Flamant's solution for the total force pi b p0 / 2 (exact to the last bit), from
+           the direction cosines and b/R: x/b would overflow for x >= 1e306 m beside
+           b = 1e-3 m */
+        double mx = fmax(fabs(x), z), ex = x / mx, ez = z / mx, nn = sqrt(ex * ex + ez * ez);
         double f;
         ex /= nn;
         ez /= nn;
-        f = -1.0 / (mx * nn);                /* -(2/pi) (pi/2) / R */
+        f = -((b / mx) / nn);                /* -(2/pi) (pi/2) b / R */
         out[0] = f * ex * ex * ez;
         out[1] = f * ez * ez * ez;
         out[2] = f * ex * ez * ez;
         out[3] = nu * (out[0] + out[1]);
         return 0;
     }
+    X = x / b;
+    Z = z / b;
     /* m + i n = sqrt(1 - (X - iZ)^2), principal root (m >= 0, n of the sign of X) */
     re = (1.0 - fabs(X)) * (1.0 + fabs(X)) + Z * Z;
     im = 2.0 * X * Z;

@@ -24,7 +24,8 @@ extern "C" {
 /* Cauchy stress / p0 at (x, y, z), z >= 0: out = {sxx, syy, szz, syz, sxz, sxy}.
    Exact also on the surface z = 0, inside the contact (szz = -p/p0), on its edge and
    outside it, and on the axes; a = b and b << a need no special handling. Beyond 1e60 a
-   from the centre the field is Boussinesq's for the total force (exact there). */
+   from the centre the field is Boussinesq's for the total force (exact there), to the end of
+   the double range (values below 2.2e-308 are subnormal: exact to their granularity). */
 int hertz_point_stress(double a, double b, double nu, double x, double y, double z,
                        double out[6]);
 
@@ -49,7 +50,8 @@ int hertz_point_stress(double a, double b, double nu, double x, double y, double
 int hertz_subsurface(double a, double b, double nu, double out[12]);
 
 /* Line contact (plane strain), semi-width b, x across the strip, z depth:
-   out = {sxx, szz, sxz, syy} / p0 with syy = nu (sxx + szz) (McEwen 1949). */
+   out = {sxx, szz, sxz, syy} / p0 with syy = nu (sxx + szz) (McEwen 1949); Flamant's line
+   force beyond 1e60 b, to the end of the double range. */
 int hertz_line_stress(double b, double nu, double x, double z, double out[4]);
 
 /* Maxima below a line contact:

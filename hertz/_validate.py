@@ -5,24 +5,71 @@ Internal code receives clean float64 arrays and never re-checks them.
 
 from __future__ import annotations
 
+import math
+
 import numpy as np
 
 
 def as_float_array(value, name: str) -> np.ndarray:
     """Convert ``value`` to a float64 ndarray, or raise TypeError naming it.
 
-    Integers and floats of any width are accepted; booleans, complex numbers,
-    strings and objects are not.
+    Integers and floats of any width are accepted (a Python int beyond the
+    double range is a ValueError naming it); booleans, complex numbers,
+    strings, objects and masked arrays (whose mask would be lost) are not.
     """
+    if isinstance(value, np.ma.MaskedArray):
+        raise TypeError(
+            f"{name} is a numpy masked array, and hertz does not apply masks: pass "
+            f"{name}.filled(value) (masked elements replaced) or {name}.compressed() (the "
+            "unmasked elements only)")
     try:
         arr = np.asarray(value)
     except Exception as exc:  # ragged nested sequences and the like
         raise TypeError(f"{name} must be a real number or an array of them: {exc}") from None
+    if arr.dtype.kind == "O":  # Python ints beyond 64 bits, mixed with floats or not
+        return _from_python_numbers(value, arr, name)
     if arr.dtype.kind not in "iuf":
         raise TypeError(
             f"{name} must be a real number or an array of them, got {_describe(value, arr)}"
         )
     return arr.astype(np.float64, copy=False)
+
+
+def int_to_float(value: int, name: str) -> float:
+    """A Python int as a float; beyond the double range a ValueError naming it."""
+    try:
+        return float(value)
+    except OverflowError:
+        raise ValueError(f"{name} must be within the range of a double (magnitude at most "
+                         f"1.7976931348623157e308), got the int {_int_text(value)}") from None
+
+
+def _from_python_numbers(value, arr: np.ndarray, name: str) -> np.ndarray:
+    """An object array of Python (or numpy) ints and floats as float64."""
+    out = np.empty(arr.shape)
+    flat = out.reshape(-1)
+    for i, v in enumerate(arr.reshape(-1)):
+        if type(v) is bool or not isinstance(v, (int, float, np.integer, np.floating)):
+            raise TypeError(
+                f"{name} must be a real number or an array of them, got {_describe(value, arr)}")
+        try:
+            flat[i] = v
+        except OverflowError:
+            raise ValueError(f"{name} must be within the range of a double (magnitude at most "
+                             f"1.7976931348623157e308), got the int {_int_text(v)}"
+                             f"{index_text(arr.shape, i)}") from None
+    return out
+
+
+def _int_text(value: int) -> str:
+    """A huge int in scientific notation (str() of it may be refused beyond 4300 digits)."""
+    shift = max(abs(value).bit_length() - 64, 0)
+    exponent = math.log10(abs(value) >> shift) + shift * math.log10(2.0)
+    power = math.floor(exponent)
+    mantissa = f"{10 ** (exponent - power):.3f}"
+    if mantissa == "10.000":
+        mantissa, power = "1.000", power + 1
+    return f"{'-' if value < 0 else ''}{mantissa}e+{power}"
 
 
 def index_text(shape: tuple[int, ...], flat_index: int) -> str:

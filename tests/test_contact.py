@@ -259,3 +259,113 @@ def test_bad_contact_arguments(kwargs, exc, match):
 def test_bodies_must_be_bodies():
     with pytest.raises(TypeError, match="body2 must be a hertz.Body"):
         hertz.contact(hertz.Body.sphere(0.01, **STEEL), (1.0, 1.0, 1e9, 0.3), load=1.0)
+
+
+# ------------------------------------------------- a result owns its arrays (issue 18, 3)
+
+def _two_ellipsoids(n=3, seed=5):
+    rng = np.random.default_rng(seed)
+    return (hertz.Body(rng.uniform(0.01, 0.05, n), 0.05, **STEEL),
+            hertz.Body(0.03, rng.uniform(0.005, 0.02, n), 70e9, 0.33),
+            rng.uniform(10.0, 100.0, n), rng.uniform(0.1, 1.4, n))
+
+
+@pytest.mark.parametrize("read_first", [False, True])
+def test_changing_the_callers_arrays_afterwards_changes_nothing(read_first):
+    """The geometry fields are computed on first access from the inputs: they must be the
+    contact's own copies, not the caller's arrays (issue 18, item 3)."""
+    b1, b2, load, angle = _two_ellipsoids()
+    expected = hertz.contact(b1, b2, load=load.copy(), angle=angle.copy())
+    c = hertz.contact(b1, b2, load=load, angle=angle)
+    if read_first:
+        c.a  # noqa: B018 (the load fields only; the geometry is still deferred)
+    angle[:] = [0.0, np.nan, 1e300]
+    load[:] = -1.0
+    for name in ("a", "b", "load", "p0", "delta", "alpha", "rho_x", "rho_y", "major_axis_angle",
+                 "e_star", "K", "E", "m", "ellipticity"):
+        np.testing.assert_array_equal(getattr(c, name), getattr(expected, name), err_msg=name)
+    assert np.all(c.alpha > 1.0)
+
+
+def _contacts_of_every_path():
+    b1, b2, load, angle = _two_ellipsoids()
+    ball = hertz.Body.sphere(0.01, **STEEL)
+    yield "fused", hertz.contact(b1, b2, load=load, angle=angle)
+    yield "one geometry, many loads", hertz.contact(ball, hertz.Body.plane(**STEEL), load=load)
+    yield "approach", hertz.contact(b1, b2, approach=[1e-6, 2e-6, 3e-6], angle=angle)
+    yield "p0", hertz.contact(ball, b2, p0=np.array([1e9, 2e9, 3e9]))
+
+
+@pytest.mark.parametrize("path, c", list(_contacts_of_every_path()))
+def test_a_contacts_arrays_are_read_only(path, c):
+    names = ("a", "b", "load", "p0", "delta", "stiffness") + tuple(
+        n for n in dir(hertz.Contact) if isinstance(getattr(hertz.Contact, n), property)
+        and n not in ("rho_sum", "p_mean", "area"))
+    assert len(names) == 15
+    for name in names:
+        value = getattr(c, name)
+        assert isinstance(value, np.ndarray) and not value.flags.writeable, (path, name)
+        with pytest.raises(ValueError, match="read-only"):
+            value[0] = 1.0
+
+
+def test_a_line_contacts_arrays_are_read_only():
+    lc = hertz.line_contact(hertz.Body.cylinder([0.01, 0.02], **STEEL), hertz.Body.plane(**STEEL),
+                            np.array([1e4, 1e5]))
+    for name in ("half_width", "p0", "e_star", "rho_sum", "load_per_length"):
+        value = getattr(lc, name)
+        assert isinstance(value, np.ndarray) and not value.flags.writeable, name
+        with pytest.raises(ValueError, match="read-only"):
+            value[0] = 1.0
+
+
+# ------------------------------------------- ints beyond the doubles, masked arrays (item 9)
+
+BIG = "must be within the range of a double \\(magnitude at most 1.7976931348623157e308\\)"
+
+
+@pytest.mark.parametrize("call, match", [
+    (lambda: hertz.Body.sphere(10**309, **STEEL), rf"^Rx {BIG}, got the int 1\.000e\+309$"),
+    (lambda: hertz.Body(1.0, 1.0, -(10**400), 0.3), rf"^E {BIG}, got the int -1\.000e\+400$"),
+    (lambda: hertz.Body.sphere([0.1, 3 * 10**5000], **STEEL),
+     rf"^Rx {BIG}, got the int 3\.000e\+5000 at index 1$"),
+    (lambda: hertz.contact(hertz.Body.sphere(0.01, **STEEL), hertz.Body.plane(**STEEL),
+                           load=10**309), rf"^load {BIG}, got the int 1\.000e\+309$"),
+    (lambda: hertz.contact(hertz.Body.sphere(0.01, **STEEL), hertz.Body.plane(**STEEL),
+                           load=1.0, angle=2**1024), rf"^angle {BIG}, got the int 1\.798e\+308$"),
+    (lambda: hertz.contact(hertz.Body.sphere(0.01, **STEEL), hertz.Body.plane(**STEEL),
+                           approach=[[1e-6], [10**309]]),
+     rf"^approach {BIG}, got the int 1\.000e\+309 at index \(1, 0\)$"),
+    (lambda: hertz.line_contact(hertz.Body.cylinder(0.01, **STEEL), hertz.Body.plane(**STEEL),
+                                10**320), rf"^load_per_length {BIG}, got the int 1\.000e\+320$"),
+    (lambda: hertz.contact(hertz.Body.sphere(0.01, **STEEL), hertz.Body.plane(**STEEL),
+                           load=1.0).stress(0.0, 0.0, [0, 10**309]), rf"^z {BIG}.* at index 1$"),
+])
+def test_ints_beyond_the_double_range_are_named(call, match):
+    with pytest.raises(ValueError, match=match):
+        call()
+
+
+def test_ints_of_more_than_64_bits_within_the_double_range_are_numbers():
+    ball, plane = hertz.Body.sphere(0.01, **STEEL), hertz.Body.plane(**STEEL)
+    c = hertz.contact(ball, plane, load=[1, 10**20, 2**70])
+    np.testing.assert_array_equal(c.load, [1.0, 1e20, 2.0**70])
+    assert c.a[1] == hertz.contact(ball, plane, load=1e20).a
+    assert hertz.Body.sphere([10**30], **STEEL).Rx[0] == 1e30
+    with pytest.raises(TypeError, match="load must be a real number"):
+        hertz.contact(ball, plane, load=[True, 10**20])
+
+
+@pytest.mark.parametrize("make", [
+    lambda m: hertz.Body(m, 0.01, **STEEL),
+    lambda m: hertz.contact(hertz.Body.sphere(0.01, **STEEL), hertz.Body.plane(**STEEL), load=m),
+    lambda m: hertz.contact(hertz.Body(0.01, 0.02, **STEEL), hertz.Body.plane(**STEEL), load=1.0,
+                            angle=m),
+    lambda m: hertz.line_contact(hertz.Body.cylinder(0.01, **STEEL), hertz.Body.plane(**STEEL), m),
+    lambda m: hertz.contact(hertz.Body.sphere(0.01, **STEEL), hertz.Body.plane(**STEEL),
+                            load=1.0).pressure(m, 0.0),
+])
+def test_masked_arrays_are_refused_not_unmasked_silently(make):
+    masked = np.ma.masked_array([0.01, -1.0], mask=[False, True])
+    with pytest.raises(TypeError, match=r"masked array.*\.filled\(value\).*\.compressed"):
+        make(masked)

@@ -8,12 +8,16 @@ invariants (equilibrium, surface traction, symmetry, the line-contact limit).
 
 import json
 import math
+from dataclasses import fields
 
 import mpmath as mp
 import numpy as np
 import pytest
+from reference import contact_ref, curvatures_ref, ellipse_ref
+from reference_stress import axis_maxima_ref
 
 import hertz
+from hertz._stress import load_for_p0
 from hertz.cli import main
 
 STEEL = (210e9, 0.3)
@@ -172,6 +176,24 @@ def test_point_contact_tends_to_the_line_contact():
     assert gaps[0] > gaps[1] > gaps[2] and gaps[2] < 1e-3
 
 
+def test_stresses_at_the_end_of_the_double_range():
+    """NaN from 1e306 m (issue 18, item 4): the far field is Boussinesq's (Flamant's) force,
+    p0 (a/R)**2 (p0 b/R), here far below the smallest double or, for the line contact at
+    R = 1.4e300 m, Flamant's -(2 P'/pi) cos(theta)/R with P' = pi b p0 / 2."""
+    c = point_contact(2.0)
+    for point in ((1e306, 0.0, 1e-5), (1.7e308, -1.7e308, 1.7e308), (0.0, 0.0, 1e308)):
+        s = c.stress(*point)
+        assert np.all(s == 0.0), point
+    lc = hertz.line_contact(hertz.Body.cylinder(0.01, *STEEL), hertz.Body.plane(*STEEL), 1e5)
+    assert np.all(lc.stress(1e308, 1e-5) == 0.0)
+    s = lc.stress(1e300, 1e300)
+    # sigma_r at theta = 45 degrees; sxx = szz = sxz = sigma_r / 2, syy = nu sigma_r
+    radial = -mp.mpf(lc.half_width) * lc.p0 * mp.sqrt(0.5) / (mp.sqrt(2) * mp.mpf(1e300))
+    ref = [float(radial / 2)] * 3 + [float(radial * mp.mpf(0.3))]
+    ours = [s[0, 0], s[2, 2], s[0, 2], s[1, 1]]
+    np.testing.assert_allclose(ours, ref, rtol=7e-16)  # observed 4.3e-16
+
+
 # ----------------------------------------------------------- API and first yield
 
 def test_shapes_and_bodies():
@@ -194,6 +216,81 @@ def test_shapes_and_bodies():
             call()
 
 
+def test_a_contact_without_load_has_no_stresses():
+    """A zero load is a valid contact (a = b = p0 = 0): every stress is 0 and the maxima
+    are 0 at the origin (the limit of a vanishing load), not a 'line contact' error."""
+    ball, plane = hertz.Body.sphere(0.01, *STEEL), hertz.Body.plane(*STEEL)
+    pair = hertz.contact(ball, plane, load=[0.0, 100.0])
+    one = hertz.contact(ball, plane, load=100.0)
+    zero = hertz.contact(ball, plane, load=0.0)
+    points = (np.array([0.0, 1e-4, -3e-4]), 2e-5, np.array([[0.0], [5e-5]]))
+    with np.errstate(all="raise"):
+        assert np.all(zero.stress(*points) == 0.0) and zero.stress(0.0, 0.0, 0.0).shape == (3, 3)
+        assert zero.pressure(0.0, 0.0) == 0.0 and zero.pressure(1, np.inf) == 0.0
+        s = pair.stress(*(np.asarray(v)[..., None] for v in points))
+        assert np.all(s[..., 0, :, :] == 0.0)
+        np.testing.assert_array_equal(s[..., 1, :, :], one.stress(*points))
+        for m in (zero.subsurface(), zero.subsurface(2)):
+            assert all(getattr(m, f.name) == 0.0 for f in fields(m))
+        m = pair.subsurface()
+        for f in fields(m):
+            assert getattr(m, f.name)[0] == 0.0
+            assert getattr(m, f.name)[1] == getattr(one.subsurface(), f.name), f.name
+    lc = hertz.line_contact(hertz.Body.cylinder(0.01, *STEEL), plane, [0.0, 1e5])
+    lc1 = hertz.line_contact(hertz.Body.cylinder(0.01, *STEEL), plane, 1e5)
+    with np.errstate(all="raise"):
+        lc0 = hertz.line_contact(hertz.Body.cylinder(0.01, *STEEL), plane, 0.0)
+        assert lc0.pressure(0.0) == 0.0 and np.all(lc0.stress(0.0, 0.0) == 0.0)
+        s = lc.stress(np.array([[0.0], [3e-5]]), 4e-5)
+        assert np.all(s[:, 0] == 0.0)
+        np.testing.assert_array_equal(s[:, 1], lc1.stress(np.array([0.0, 3e-5]), 4e-5))
+        m = lc.subsurface()
+        for f in fields(m):
+            assert getattr(m, f.name)[0] == 0.0
+            assert getattr(m, f.name)[1] == getattr(lc1.subsurface(), f.name), f.name
+
+
+@pytest.mark.parametrize("call, match", [
+    (lambda c, lc: c.stress([0.0, np.nan], 0.0, 0.0),
+     r"^x must be a finite coordinate in m, got nan at index 1$"),
+    (lambda c, lc: c.stress(0.0, [[0.0, 1.0], [np.inf, 0.0]], 0.0),
+     r"^y must be a finite coordinate in m, got inf at index \(1, 0\)$"),
+    (lambda c, lc: c.stress(0.0, 0.0, [0.0, 1e-6, -1e-6]),
+     r"^z must be a depth >= 0 in m \(finite\), got -1e-06 at index 2$"),
+    (lambda c, lc: c.stress(0.0, 0.0, np.inf), r"^z must be a depth >= 0 .*got inf$"),
+    (lambda c, lc: c.pressure(np.nan, 0.0), r"^x must be a coordinate in m \(not NaN\), got nan$"),
+    (lambda c, lc: c.pressure(0.0, [1.0, np.nan]), r"^y must be .*got nan at index 1$"),
+    (lambda c, lc: lc.pressure([np.nan]), r"^x must be a coordinate .*got nan at index 0$"),
+    (lambda c, lc: lc.stress([1.0, -np.inf], 0.0), r"^x must be .*got -inf at index 1$"),
+    (lambda c, lc: lc.stress(0.0, [0.0, -2.0]), r"^z must be .*got -2.0 at index 1$"),
+    (lambda c, lc: c.stress(0.0, 0.0, 0.0, body=1.0), r"^body must be 1 or 2, got 1.0$"),
+    (lambda c, lc: c.subsurface(body=True), r"^body must be 1 or 2, got True$"),
+    (lambda c, lc: lc.subsurface(body="2"), r"^body must be 1 or 2, got '2'$"),
+    (lambda c, lc: c.first_yield_load(1e9, body=2.0), r"^body must be 1 or 2, got 2.0$"),
+    (lambda c, lc: c.first_yield_load([1e9, np.nan]), r"yield_strength .*got nan at index 1$"),
+])
+def test_bad_points_and_bodies_name_the_parameter_value_and_index(call, match):
+    c = point_contact()
+    lc = hertz.line_contact(hertz.Body.cylinder(0.01, *STEEL), hertz.Body.plane(*STEEL), 1e5)
+    with pytest.raises(ValueError, match=match):
+        call(c, lc)
+
+
+def test_pressure_at_infinity_is_zero_and_bodies_may_be_numpy_integers():
+    c = point_contact()
+    assert c.pressure(np.inf, 0.0) == 0.0 and c.pressure(0.0, -np.inf) == 0.0
+    np.testing.assert_array_equal(c.stress(0.0, 0.0, c.a, body=np.int64(2)),
+                                  c.stress(0.0, 0.0, c.a, body=2))
+
+
+def test_a_contact_beyond_the_stress_kernels_range_is_named_by_its_index():
+    plane = hertz.Body.plane(*STEEL)
+    c = hertz.contact(hertz.Body([1e-2, 1e-2], [1e-2, 1e300], *STEEL), plane, load=1.0)
+    for call in (c.subsurface, lambda: c.stress(0.0, 0.0, 1e-6)):
+        with pytest.raises(ValueError, match=r"b/a >= 1e-70 .*line_contact.*at index 1$"):
+            call()
+
+
 @pytest.mark.parametrize("criterion", ["von_mises", "tresca"])
 def test_first_yield_load_reaches_the_yield_strength(criterion):
     ball, race = hertz.Body.sphere(6e-3, *STEEL), hertz.Body(-6.2e-3, 40e-3, *STEEL)
@@ -206,6 +303,56 @@ def test_first_yield_load_reaches_the_yield_strength(criterion):
         c.first_yield_load(-1.0)
     with pytest.raises(ValueError, match="criterion must be one of"):
         c.first_yield_load(1e9, criterion="rankine")
+
+
+def test_first_yield_load_does_not_depend_on_the_contacts_own_load():
+    """Issue 18, item 4: inf at a load of 1e-310, NaN from approach=1e308. The first-yield
+    load of the default scene (1.5 GPa) against mpmath: the ellipse, E*, the curvatures and
+    the largest von Mises stress on the axis (reference.py, reference_stress.py), then
+    P = (8 pi/3) lambda (E(m) p0 / (E* rho_sum))**2 p0. Observed error 8.2e-16."""
+    ball, race = (6e-3, 6e-3, *STEEL), (-6.2e-3, 40e-3, *STEEL)
+    rho_x, rho_y = curvatures_ref(6e-3, 6e-3, -6.2e-3, 40e-3, 0.0)
+    lam, _, _, ellip_e = ellipse_ref(rho_x / rho_y)
+    e_star = 1 / (2 * (1 - mp.mpf(0.3) ** 2) / mp.mpf(210e9))
+    p0 = mp.mpf(1.5e9) / axis_maxima_ref(1, 1 / lam, 0.3, dps=25, npts=40)["von_mises"][0]
+    expected = 8 * mp.pi / 3 * lam * (ellip_e * p0 / (e_star * (rho_x + rho_y))) ** 2 * p0
+    assert float(expected) == pytest.approx(2969.17, abs=0.005)
+    b1, b2 = hertz.Body(*ball), hertz.Body(*race)
+    contacts = [hertz.contact(b1, b2, load=load) for load in (5e-324, 1e-310, 0.0, 1.0, 1500.0,
+                                                              1e300)]
+    contacts += [hertz.contact(b1, b2, approach=1e308), hertz.contact(b1, b2, p0=1e-300)]
+    with np.errstate(all="raise"):
+        loads = [c.first_yield_load(1.5e9) for c in contacts]
+    assert len(set(loads)) == 1
+    assert abs(loads[0] - expected) <= 1.2e-15 * expected
+    batch = hertz.contact(b1, b2, load=[0.0, 1e-310, 1e300]).first_yield_load([1.5e9, 3e9, 1e8])
+    assert batch[0] == loads[0] and batch[1] == pytest.approx(8 * loads[0], rel=2e-15)
+
+
+def test_load_for_a_peak_pressure_against_mpmath():
+    """The geometry-only load of first yield, P(p0), gives back p0 through the seed's
+    contact formulas in mpmath (reference.py), for random bodies, angles and pressures,
+    and for curvatures and pressures far from the usual: tiny or huge radii and p0."""
+    rng = np.random.default_rng(3)
+    scenes = []
+    for _ in range(40):
+        r1, r2 = 10 ** rng.uniform(-4, 0, 2), 10 ** rng.uniform(-4, 0, 2)
+        scenes.append(((r1[0], r1[1], 10 ** rng.uniform(9, 12), rng.uniform(-0.9, 0.5)),
+                       (r2[0], r2[1], 10 ** rng.uniform(9, 12), rng.uniform(-0.9, 0.5)),
+                       rng.uniform(-math.pi, math.pi), 10 ** rng.uniform(5, 11)))
+    # P ~ (p0 / (E* rho))**2 p0: these give 0.1 N, 1e168 N, 1e-298 N and 1e212 N
+    scenes += [((1e-200, 2e-200, *STEEL), (math.inf, math.inf, *STEEL), 0.3, 1e140),
+               ((1e200, 3e200, *STEEL), (-5e200, 1e201, *STEEL), 0.0, 1e-70),
+               ((1e-3, 2e-3, *STEEL), (math.inf, math.inf, *STEEL), 1.0, 1e-90),
+               ((1e-3, 2e-3, *STEEL), (math.inf, math.inf, *STEEL), 1.0, 1e80)]
+    worst = 0.0
+    for b1, b2, angle, p0 in scenes:
+        c = hertz.contact(hertz.Body(*b1), hertz.Body(*b2), load=0.0, angle=angle)
+        load = load_for_p0(p0, c.ellipticity, c.E, c.e_star, c.rho_sum)
+        assert 0.0 < load < math.inf
+        ref = contact_ref(b1, b2, load, angle)
+        worst = max(worst, float(abs(ref.p0 - p0) / p0))
+    assert worst <= 4e-16   # observed 2.6e-16 (the load within 3x that)
 
 
 def test_load_for_a_peak_pressure_round_trips():

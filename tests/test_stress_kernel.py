@@ -329,3 +329,43 @@ def test_invalid_input(lib):
     assert rc == 4 and np.isnan(out).all()
     out, rc = call(lib.hertz_line_subsurface, 7, 1.0, 0.51)
     assert rc == 2 and np.isnan(out).all()
+
+
+def _flamant(x, z):
+    """(sxx, szz, sxz) of a unit line force per unit length at the origin, exact
+    (Johnson sec. 2.2: sigma_r = -(2/pi) cos(theta) / r)."""
+    with mp.workdps(30):
+        x, z = mp.mpf(x), mp.mpf(z)
+        r4 = (x * x + z * z) ** 2
+        return [-2 / mp.pi * x * x * z / r4, -2 / mp.pi * z ** 3 / r4,
+                -2 / mp.pi * x * z * z / r4]
+
+
+FAR_POINTS = [(1e60, 3e59, 2e59), (-1e150, 1e149, 5e149), (0.0, 0.0, 1e200),
+              (1e304, -2e303, 1e303), (1.7e308, 1e308, 1.5e308), (1e306, 0.0, 1e-5),
+              (0.0, -1.7e308, 0.0), (1e308, 1e308, 1e308)]
+
+
+@pytest.mark.parametrize("x, y, z", FAR_POINTS)
+def test_far_field_to_the_end_of_the_double_range(lib, x, y, z):
+    """Issue 18, item 4: NaN at coordinates from 1e306 m (x/a overflowed). Beyond 1e60 a the
+    field is Boussinesq's for the total force (relative difference (a/R)^2): to the last bit
+    where the stress / p0 is a normal double, to its granularity where it underflows."""
+    a, b, nu = 1e-4, 4e-5, 0.3
+    s = point(lib, a, b, nu, x, y, z)
+    q = 2 * math.pi * a * b / 3 * np.array([float(v) for v in _boussinesq(nu, x, y, z)])
+    assert np.isfinite(s).all()
+    np.testing.assert_allclose(s, q, rtol=0, atol=2e-15 * np.abs(q).max() + 2e-323)
+
+
+@pytest.mark.parametrize("x, z", [(1e61, 3e60), (1e308, 1e-5), (-1.7e308, 1.7e308),
+                                  (1e200, 1e250), (0.0, 1.7e308), (1e306, 1e306)])
+def test_line_far_field_to_the_end_of_the_double_range(lib, x, z):
+    """LineContact.stress(1e308, 1e-5) was NaN (x/b overflowed): Flamant's line force
+    pi b p0 / 2 beyond 1e60 b, exact up to the granularity of the underflowing values."""
+    b, nu = 1e-4, 0.25
+    s, rc = call(lib.hertz_line_stress, 4, b, nu, x, z)
+    q = math.pi * b / 2 * np.array([float(v) for v in _flamant(x, z)])
+    assert rc == 0 and np.isfinite(s).all()
+    np.testing.assert_allclose(s[:3], q, rtol=0, atol=2e-15 * np.abs(q).max() + 2e-323)
+    assert s[3] == nu * (s[0] + s[1])
