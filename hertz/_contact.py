@@ -13,7 +13,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from . import _ufuncs
+from . import _interop, _ufuncs
 from ._validate import (
     as_float_array,
     broadcast_shape,
@@ -118,6 +118,9 @@ class Body:
 
     def __init__(self, Rx, Ry, E, nu):
         scalar = type(Rx) is type(Ry) is type(E) is type(nu) is float
+        if not scalar and _interop.any_wrapped(Rx, Ry, E, nu):
+            _interop.init_body(self, Rx, Ry, E, nu)  # pandas, xarray, pint
+            return
         if not scalar:
             Rx, Ry, E, nu = _real(Rx, "Rx"), _real(Ry, "Ry"), _real(E, "E"), _real(nu, "nu")
             scalar = type(Rx) is type(Ry) is type(E) is type(nu) is float
@@ -230,6 +233,22 @@ class Contact:
         Mean pressure P / area = 2 p0 / 3 [Pa].
     area : float or ndarray
         Contact area pi a b [m**2].
+
+    Notes
+    -----
+    Inputs of other libraries give results of the same kind, held in the
+    fields themselves (the geometry fields are then computed at once):
+    pandas Series (or DataFrames) give Series on the same index, named
+    after the field (every pandas input must have the same index: hertz
+    does not align); xarray DataArrays give DataArrays on the dimensions
+    broadcast by name; pint Quantities are converted to SI and give
+    Quantities in SI units (``c.a.to("mm")``); dask arrays give dask arrays,
+    computed when asked.  The methods (``pressure``, ``stress``,
+    ``subsurface``, ``first_yield_load``) follow the same rules; a stress
+    tensor has no pandas form and is a numpy array (..., 3, 3) in the
+    index's order, and an xarray one has the dimensions ``row`` and
+    ``column`` (labels x, y, z) last.  Mixing dask with pandas, pandas with
+    xarray, or pint with either is refused.
     """
 
     a: float | np.ndarray
@@ -287,6 +306,8 @@ class Contact:
         >>> bool(c.pressure(0.0, 0.0) == c.p0), float(c.pressure(c.a, 0.0))
         (True, 0.0)
         """
+        if _interop.any_foreign(self.a, x, y):
+            return _interop.call_method(self, "pressure", (("x", x, "m"), ("y", y, "m")), "Pa")
         x = as_float_array(x, "x")
         y = as_float_array(y, "y")
         with np.errstate(divide="ignore", invalid="ignore"):
@@ -322,6 +343,9 @@ class Contact:
         >>> bool(abs(s[2, 2] + c.p0) < 1e-6 * c.p0)  # sigma_zz = -p0 at the centre
         True
         """
+        if _interop.any_foreign(self.a, x, y, z):
+            return _interop.call_method(self, "stress", (("x", x, "m"), ("y", y, "m"),
+                                                         ("z", z, "m")), "Pa", body)
         return _stress.point_stress(self.a, self.b, self.p0, _stress.poisson_of(self._nu, body),
                                     x, y, z)
 
@@ -344,6 +368,8 @@ class Contact:
         >>> print(f"{m.tau_max / c.p0:.4f} p0 at z = {m.z_tau_max / c.a:.4f} a")
         0.3100 p0 at z = 0.4809 a
         """
+        if _interop.any_foreign(self.a):
+            return _interop.call_method(self, "subsurface", (), None, body)
         return _stress.subsurface(self.a, self.b, self.p0, _stress.poisson_of(self._nu, body))
 
     def first_yield_load(self, yield_strength, body=1, criterion="von_mises"):
@@ -363,6 +389,10 @@ class Contact:
             Which body.
         criterion : {"von_mises", "tresca"}
         """
+        if _interop.any_foreign(self.a, yield_strength):
+            return _interop.call_method(self, "first_yield_load",
+                                        (("yield_strength", yield_strength, "Pa"),), "N", body,
+                                        criterion)
         nu = _stress.poisson_of(self._nu, body)
         unit = _stress.subsurface(self.a, self.b, 1.0, nu)  # the maxima per unit p0
         p0_yield = _stress.yield_p0((unit.von_mises, unit.tau_max), yield_strength, criterion)
@@ -376,9 +406,6 @@ _ufuncs.register_contact_type(Contact)
 
 def _solve_geometry(inputs, shape):
     """The nine geometry fields of a batch, broadcast to its shape."""
-    if any(is_duck_array(x) for x in inputs):
-        return tuple(_dask_apply(_ufuncs.contact_geometry, inputs, len(_GEOMETRY_FIELDS),
-                                 shape))
     fields = _ufuncs.contact_geometry(*inputs)
     return tuple(x if x.shape == shape else np.broadcast_to(x, shape) for x in fields)
 
@@ -423,6 +450,8 @@ class LineContact:
 
     def pressure(self, x):
         """Pressure p0 sqrt(1 - (x/b)**2) at distance x [m] across the line [Pa]."""
+        if _interop.any_foreign(self.half_width, x):
+            return _interop.call_method(self, "pressure", (("x", x, "m"),), "Pa")
         x = as_float_array(x, "x")
         with np.errstate(divide="ignore", invalid="ignore"):
             return _semi_elliptic(self.p0, np.square(x / self.half_width))
@@ -434,11 +463,16 @@ class LineContact:
         [m], the contact line along y.  Returns shape (..., 3, 3), rows and
         columns x, y, z, tension positive; sigma_yy = nu (sigma_xx + sigma_zz).
         """
+        if _interop.any_foreign(self.half_width, x, z):
+            return _interop.call_method(self, "stress", (("x", x, "m"), ("z", z, "m")), "Pa",
+                                        body)
         return _stress.line_stress(self.half_width, self.p0,
                                    _stress.poisson_of(self._nu, body), x, z)
 
     def subsurface(self, body=1) -> _stress.LineSubsurface:
         """The largest stresses below the line contact in body 1 or 2 and where they are."""
+        if _interop.any_foreign(self.half_width):
+            return _interop.call_method(self, "subsurface", (), None, body)
         return _stress.line_subsurface(self.half_width, self.p0,
                                        _stress.poisson_of(self._nu, body))
 
@@ -468,21 +502,6 @@ def _first_error(status_ufunc, scalar, args, shape, extra=()):
     return None  # pragma: no cover - the status pass and the loop agree
 
 
-def _dask_shape(args):
-    return np.broadcast_shapes(*(np.shape(a) for a in args))
-
-
-def _dask_apply(ufunc, args, nout, shape):
-    """The ufunc over dask (duck) arrays, lazily: a tuple of nout dask arrays of ``shape``."""
-    import dask.array as da
-
-    signature = ",".join(["()"] * len(args)) + "->" + ",".join(["()"] * nout)
-    out = da.apply_gufunc(ufunc, signature, *args, output_dtypes=(np.float64,) * nout,
-                          vectorize=False)
-    out = out if isinstance(out, tuple) else (out,)
-    return tuple(x if x.shape == shape else da.broadcast_to(x, shape) for x in out)
-
-
 def contact(body1: Body, body2: Body, load=None, angle=0.0, *, approach=None,
             p0=None) -> Contact:
     """Hertz point contact of two elastic bodies pressed together.
@@ -509,7 +528,8 @@ def contact(body1: Body, body2: Body, load=None, angle=0.0, *, approach=None,
         Semi-axes, pressure, approach, stiffness and the ellipse parameters:
         Python floats for scalar input, else arrays of the broadcast shape.
         Dask arrays in give a Contact of dask arrays, computed (and checked)
-        only when asked.
+        only when asked; pandas, xarray and pint inputs give Series,
+        DataArrays and Quantities (see :class:`Contact`).
 
     Raises
     ------
@@ -561,13 +581,14 @@ def contact(body1: Body, body2: Body, load=None, angle=0.0, *, approach=None,
             and (kind_a is float or kind_a is int)):
         return _ufuncs.contact(mode, body1.Rx, body1.Ry, body2.Rx, body2.Ry, angle, body1.E,
                                body1.nu, body2.E, body2.nu, value)
+    if _interop.any_wrapped(value, angle, body1.Rx, body1.Ry, body1.E, body1.nu, body2.Rx,
+                            body2.Ry, body2.E, body2.nu):
+        return _interop.contact(body1, body2, name, value, angle)  # pandas, xarray, pint
     args = [body1.Rx, body1.Ry, body2.Rx, body2.Ry, _real_arg(angle, "angle"), body1.E,
             body1.nu, body2.E, body2.nu, _real_arg(value, name)]
     geometry = args[:9]
     if any(is_duck_array(a) for a in args):
-        shape = _dask_shape(args)
-        return Contact(*_dask_apply(fused, args, 6, shape), _Deferred(geometry, shape),
-                       (body1.nu, body2.nu))
+        return _interop.dask_contact(fused, args, (body1.nu, body2.nu))
     geometry_shape = broadcast_shape(**dict(zip(_GEOMETRY_NAMES, geometry, strict=True)))
     shape = broadcast_shape(**dict(zip(_GEOMETRY_NAMES, geometry, strict=True)),
                             **{name: args[9]})
@@ -634,11 +655,13 @@ def line_contact(body1: Body, body2: Body, load_per_length) -> LineContact:
         return LineContact(*_ufuncs.line_contact(body1.Rx, body1.Ry, body2.Rx, body2.Ry,
                                                  body1.E, body1.nu, body2.E, body2.nu,
                                                  load_per_length), (body1.nu, body2.nu))
+    if _interop.any_wrapped(load_per_length, body1.Rx, body1.Ry, body1.E, body1.nu, body2.Rx,
+                            body2.Ry, body2.E, body2.nu):
+        return _interop.line_contact(body1, body2, load_per_length)  # pandas, xarray, pint
     args = [body1.Rx, body1.Ry, body2.Rx, body2.Ry, body1.E, body1.nu, body2.E, body2.nu,
             _real_arg(load_per_length, "load_per_length")]
     if any(is_duck_array(a) for a in args):
-        return LineContact(*_dask_apply(_ufuncs.line, args, 5, _dask_shape(args)),
-                           (body1.nu, body2.nu))
+        return _interop.dask_line(args, (body1.nu, body2.nu))
     names = [n for n in _GEOMETRY_NAMES if n != "angle"] + ["load_per_length"]
     shape = broadcast_shape(**dict(zip(names, args, strict=True)))
     try:
