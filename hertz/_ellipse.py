@@ -139,7 +139,7 @@ def ellipticity(alpha, *, iterations=DEFAULT_ITERATIONS, out=None):
         return float(ufunc(alpha))
     if is_duck_array(alpha):
         if out is None:  # block by block; an error names the index in the whole array
-            return _interop.dask_map(ufunc, [alpha])
+            return _interop.dask_map(ufunc, [alpha], names=["alpha"])
         # dtype given, so that dask need not try the ufunc on uninitialised
         # memory to learn the result type (a ValueError there would hide it)
         return ufunc(alpha, out=out, dtype=np.float64)

@@ -36,7 +36,7 @@ import math
 
 import numpy as np
 
-from ._validate import with_index
+from ._validate import as_float_array, with_index
 
 #: libraries whose objects are unwrapped and the results wrapped again
 _WRAPPERS = frozenset(("pandas", "xarray", "pint"))
@@ -165,6 +165,10 @@ def unwrap(items):
         plain = _unwrap_pandas(names, plain, recipe)
     elif "xarray" in libraries:
         plain = _unwrap_xarray(names, plain, recipe)
+    for name, value in zip(names, plain, strict=True):
+        if library(value) in _WRAPPERS:  # e.g. a DataArray of Quantities (pint-xarray)
+            raise TypeError(f"{name}: a {type(value).__name__} inside a pandas or xarray "
+                            "object is not supported; give plain numbers in SI units")
     return plain, recipe
 
 
@@ -176,7 +180,7 @@ def _pandas_values(value, name: str):
                         f"got a pandas {type(value).__name__}")
     dtypes = [value.dtype] if isinstance(value, pd.Series) else list(value.dtypes)
     if all(pd.api.types.is_numeric_dtype(d) and not pd.api.types.is_bool_dtype(d)
-           for d in dtypes):
+           and not pd.api.types.is_complex_dtype(d) for d in dtypes):
         # nullable dtypes: a missing value becomes NaN, which is then refused with its index
         return value.to_numpy(dtype=np.float64, na_value=np.nan)
     return value.to_numpy()  # refused by the numeric check, which names the dtype
@@ -361,6 +365,9 @@ def call_method(result, method: str, arguments, unit, *options):
              + [("nu1", result._nu[0], ONE), ("nu2", result._nu[1], ONE)] + list(arguments))
     plain, recipe = unwrap(items)
     nown = len(own) + 2
+    _check_options(method, options)
+    plain[nown:] = [v if is_dask(v) else as_float_array(v, name)
+                    for v, (name, _, _) in zip(plain[nown:], arguments, strict=True)]
 
     def evaluate(*values):
         fields = dict(zip(own, values[:len(own)], strict=True))
@@ -389,6 +396,16 @@ def call_method(result, method: str, arguments, unit, *options):
     return recipe.wrap(out, unit, method, tensor=tensor)
 
 
+def _check_options(method, options):
+    """The body (and criterion) now, not when a dask block is computed."""
+    from ._stress import poisson_of, yield_p0
+
+    if options:
+        poisson_of((0.3, 0.3), options[0])
+    if method == "first_yield_load":
+        yield_p0((1.0, 1.0), 1.0, options[1])
+
+
 def _subsurface_type(kind):
     from ._contact import Contact
     from ._stress import LineSubsurface, Subsurface
@@ -408,14 +425,15 @@ def _as_tuple(out, names):
 
 # --------------------------------------------------------------------------- dask
 
-def dask_map(func, args, nout=None, trailing=()):
+def dask_map(func, args, nout=None, trailing=(), names=None):
     """``func`` over the blocks of ``args`` (dask arrays, numpy arrays, floats), lazily.
 
     The arguments broadcast together; numpy arrays are made single-chunk dask
     arrays and all are rechunked to the common refinement of their chunks.
     ``func(*blocks)`` returns an array of the blocks' broadcast shape (plus
     ``trailing``), or a tuple of ``nout`` of them (then a tuple of dask arrays
-    is returned).  A ValueError in a block is raised again for the first bad
+    is returned).  ``names`` name the arguments in the error for a dask array
+    that is not of real numbers.  A ValueError in a block is raised again for the first bad
     element of that block, with its index in the whole broadcast array.
     """
     import dask.array as da
@@ -424,7 +442,11 @@ def dask_map(func, args, nout=None, trailing=()):
     ndim = len(shape)
     loop = tuple(f"i{k}" for k in range(ndim))
     pairs = []
-    for a in args:
+    for k, a in enumerate(args):
+        if is_dask(a) and a.dtype.kind not in "iuf":
+            name = names[k] if names else "the input"
+            raise TypeError(f"{name} must be a real number or an array of them, got a dask "
+                            f"array of dtype {a.dtype}")
         if is_dask(a) or (isinstance(a, np.ndarray) and a.ndim):
             a = a if is_dask(a) else da.from_array(a, chunks=-1)
             pairs += [a.astype(np.float64, copy=False), loop[ndim - a.ndim:]]
@@ -498,19 +520,21 @@ def dask_contact(fused, args, nu):
     """A Contact of dask arrays: the six load fields and the nine geometry fields (all
     of the broadcast shape and chunks), computed when asked."""
     from . import _ufuncs
-    from ._contact import Contact
+    from ._contact import _GEOMETRY_NAMES, _MODES, Contact
 
-    fields = dask_map(fused, args, nout=6)
+    names = _GEOMETRY_NAMES + tuple(k for k, (_, f, _) in _MODES.items() if f is fused)
+    fields = dask_map(fused, args, nout=6, names=names)
 
     def geometry(*values):
         return _ufuncs.contact_geometry(*values[:9])
 
-    return Contact(*fields, dask_map(geometry, args, nout=9), nu)
+    return Contact(*fields, dask_map(geometry, args, nout=9, names=names), nu)
 
 
 def dask_line(args, nu):
     """A LineContact of dask arrays."""
     from . import _ufuncs
-    from ._contact import LineContact
+    from ._contact import _GEOMETRY_NAMES, LineContact
 
-    return LineContact(*dask_map(_ufuncs.line, args, nout=5), nu)
+    names = tuple(k for k in _GEOMETRY_NAMES if k != "angle") + ("load_per_length",)
+    return LineContact(*dask_map(_ufuncs.line, args, nout=5, names=names), nu)

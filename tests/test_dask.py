@@ -234,3 +234,17 @@ def test_compute_errors_name_the_global_index_in_2d():
     with pytest.raises(ValueError, match=r"load_per_length must be.*got -1\.0 at index "
                                          r"\([0-3], 8\)$"):
         line.p0.compute()
+
+
+def test_bad_options_and_types_raise_at_once_not_at_compute(no_compute):
+    radius = da.from_array(np.linspace(1e-2, 2e-2, 10), chunks=3)
+    c = hertz.contact(hertz.Body.sphere(radius, *STEEL), hertz.Body.plane(*STEEL), load=1.0)
+    with pytest.raises(ValueError, match=r"^body must be 1 or 2, got 3$"):
+        c.subsurface(body=3)
+    with pytest.raises(ValueError, match=r"^criterion must be one of"):
+        c.first_yield_load(1e9, criterion="rankine")
+    with pytest.raises(TypeError, match=r"^z must be a real number"):
+        c.stress(0.0, 0.0, "deep")
+    with pytest.raises(TypeError, match=r"^load must be a real number.*dask array of dtype bool"):
+        hertz.contact(hertz.Body.sphere(radius, *STEEL), hertz.Body.plane(*STEEL),
+                      load=da.ones(10, dtype=bool, chunks=5))

@@ -343,3 +343,10 @@ def test_quantities_with_pandas_are_refused(ureg, pd):
     with pytest.raises(TypeError, match="pint Quantities inside or beside pandas"):
         hertz.contact(hertz.Body.sphere(5 * ureg.mm, *STEEL), hertz.Body.plane(*STEEL),
                       load=pd.Series([1.0, 2.0]))
+
+
+def test_complex_and_non_numeric_pandas_are_refused(pd):
+    with pytest.raises(TypeError, match=r"^Rx must be a real number.*complex128"):
+        hertz.Body.sphere(pd.Series([1e-2 + 1e-3j]), *STEEL)
+    with pytest.raises(TypeError, match=r"^Rx must be a number, an array, a pandas Series"):
+        hertz.Body.sphere(pd.Index([1e-2]), *STEEL)
