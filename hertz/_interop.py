@@ -468,14 +468,17 @@ def dask_map(func, args, nout=None, trailing=(), names=None):
     def block(*blocks):
         rows, values = blocks[:ndim], blocks[ndim:]
         bshape = tuple(len(r) for r in rows)
+        out = np.empty((nout,) + bshape + tuple(trailing)) if stacked else None
         try:
+            if stacked and type(func) is np.ufunc:  # the kernel writes the stack in place
+                func(*values, out=tuple(out[k, ...] for k in range(nout)))
+                return out
             result = func(*values)
         except ValueError as exc:
             raise _located(func, values, [int(r[0]) if len(r) else 0 for r in rows], shape,
                            exc) from None
         if not stacked:
             return np.broadcast_to(result, bshape + tuple(trailing)).astype(np.float64)
-        out = np.empty((nout,) + bshape + tuple(trailing))
         for k, r in enumerate(result):
             out[k] = r
         return out

@@ -248,3 +248,15 @@ def test_bad_options_and_types_raise_at_once_not_at_compute(no_compute):
     with pytest.raises(TypeError, match=r"^load must be a real number.*dask array of dtype bool"):
         hertz.contact(hertz.Body.sphere(radius, *STEEL), hertz.Body.plane(*STEEL),
                       load=da.ones(10, dtype=bool, chunks=5))
+
+
+def test_zero_dimensional_dask_arrays():
+    ball = hertz.Body.sphere(da.from_array(np.array(0.01)), *STEEL)
+    ref = hertz.contact(hertz.Body.sphere(0.01, *STEEL), hertz.Body.plane(*STEEL), load=10.0)
+    c = hertz.contact(ball, hertz.Body.plane(*STEEL), load=10.0)
+    for field in FIELDS:
+        assert getattr(c, field).compute() == getattr(ref, field), field
+    assert c.subsurface().tau_max.compute() == ref.subsurface().tau_max
+    bad = hertz.contact(ball, hertz.Body.plane(*STEEL), load=da.from_array(np.array(-1.0)))
+    with pytest.raises(ValueError, match=r"^load must be a finite value >= 0 in N, got -1\.0$"):
+        bad.p0.compute()
