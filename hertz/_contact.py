@@ -80,6 +80,11 @@ class Body:
     float64 copy of an array (changing the caller's array later changes
     nothing); a dask array is kept as it is and checked when computed.
 
+    A pandas Series or DataFrame, an xarray DataArray or a pint Quantity is
+    checked and kept in its kind, around the body's own copy of the values;
+    a Quantity is converted to SI (radii in m, E in Pa, nu a plain number),
+    and one of another dimension is a TypeError.
+
     Parameters
     ----------
     Rx, Ry : float or array_like
@@ -248,7 +253,9 @@ class Contact:
     tensor has no pandas form and is a numpy array (..., 3, 3) in the
     index's order, and an xarray one has the dimensions ``row`` and
     ``column`` (labels x, y, z) last.  Mixing dask with pandas, pandas with
-    xarray, or pint with either is refused.
+    xarray, or pint with either is refused.  A bad value in a dask array
+    raises when its block is computed, naming the parameter, the value and
+    its index in the whole (broadcast) array.
     """
 
     a: float | np.ndarray
@@ -433,6 +440,9 @@ class LineContact:
     -----
     The approach of a line contact depends on the size of the bodies, not
     only on the contact, and is not given.
+
+    pandas, xarray, pint and dask inputs give results of their kind, as for
+    :class:`Contact` (load_per_length in N/m).
     """
 
     half_width: float | np.ndarray

@@ -79,9 +79,9 @@ def ellipticity(alpha, *, iterations=DEFAULT_ITERATIONS, out=None):
     the ratio of the relative curvatures along x and y.
 
     Elementwise like a numpy ufunc: any real dtype in, float64 out,
-    broadcasting, ``out=``, and arrays of other libraries (dask) handled by
-    their ``__array_ufunc__``: a dask array in gives a dask array out,
-    computed only when asked.
+    broadcasting, ``out=``; a dask array in gives a dask array out, computed
+    only when asked, and a pandas Series, an xarray DataArray or a
+    dimensionless pint Quantity gives one of its kind.
 
     Parameters
     ----------
