@@ -130,9 +130,11 @@ class Recipe:
 
 def _to_si(quantity, name: str, unit: str):
     """The magnitude of a pint Quantity in the SI ``unit``."""
+    from pint import DimensionalityError
+
     try:
         return quantity.to(unit or "dimensionless").magnitude
-    except TypeError:  # pint's DimensionalityError is a TypeError
+    except DimensionalityError:
         raise TypeError(f"{name} must be {_MEASURES[unit]} (a quantity convertible to "
                         f"{unit or 'a plain number'}), got a quantity in {quantity.units}"
                         ) from None
