@@ -171,19 +171,22 @@ _GEOMETRY_FIELDS = ("ellipticity", "alpha", "m", "K", "E", "e_star", "rho_x", "r
 
 
 class _Deferred:
-    """Inputs from which a batch's geometry fields are computed on first access."""
+    """Inputs from which a batch's geometry fields are computed on first access
+    (then passed to ``wrap``, if given: the pandas, xarray or pint form)."""
 
-    __slots__ = ("inputs", "shape")
+    __slots__ = ("inputs", "shape", "wrap")
 
-    def __init__(self, inputs, shape):
-        self.inputs, self.shape = inputs, shape
+    def __init__(self, inputs, shape, wrap=None):
+        self.inputs, self.shape, self.wrap = inputs, shape, wrap
 
 
 def _geometry_field(k: int, doc: str):
     def get(self):
         fields = self._geometry
         if type(fields) is _Deferred:
-            fields = _solve_geometry(fields.inputs, fields.shape)
+            deferred, fields = fields, _solve_geometry(fields.inputs, fields.shape)
+            if deferred.wrap is not None:
+                fields = deferred.wrap(fields)
             object.__setattr__(self, "_geometry", fields)
         return fields[k]
 

@@ -32,6 +32,7 @@ module of its type, and its library imported only when one arrives.
 
 from __future__ import annotations
 
+import functools
 import math
 
 import numpy as np
@@ -124,8 +125,14 @@ class Recipe:
                 coords.update({d: list("xyz") for d in _TENSOR_DIMS})
             value = xr.DataArray(value, coords=coords, dims=dims, name=name)
         if self.registry is not None:
-            value = self.registry.Quantity(value, unit)
+            value = self.registry.Quantity(value, _unit(self.registry, unit))
         return value
+
+
+@functools.lru_cache(maxsize=64)
+def _unit(registry, unit: str):
+    """The registry's Unit for ``unit`` (parsing the text costs more than the rest)."""
+    return registry.Unit(unit or "dimensionless")
 
 
 def _to_si(quantity, name: str, unit: str):
@@ -133,7 +140,7 @@ def _to_si(quantity, name: str, unit: str):
     from pint import DimensionalityError
 
     try:
-        return quantity.to(unit or "dimensionless").magnitude
+        return quantity.to(_unit(quantity._REGISTRY, unit)).magnitude
     except DimensionalityError:
         raise TypeError(f"{name} must be {_MEASURES[unit]} (a quantity convertible to "
                         f"{unit or 'a plain number'}), got a quantity in {quantity.units}"
@@ -244,14 +251,16 @@ def _unwrap_xarray(names, values, recipe):
                 raise TypeError(f"{name} must be a number, an array or an xarray DataArray, "
                                 f"got an xarray {type(value).__name__}")
             arrays[name] = value
-    try:
-        xr.align(*arrays.values(), join="exact", copy=False)
-    except ValueError:
-        raise ValueError(
-            f"the coordinates of {', '.join(arrays)} differ on a shared dimension: hertz "
-            "does not align DataArrays; align them first (xarray.align(..., join='inner'))"
-        ) from None
-    template = xr.broadcast(*arrays.values())[0]
+    template = next(iter(arrays.values()))
+    if len(arrays) > 1:
+        try:
+            xr.align(*arrays.values(), join="exact", copy=False)
+        except ValueError:
+            raise ValueError(
+                f"the coordinates of {', '.join(arrays)} differ on a shared dimension: hertz "
+                "does not align DataArrays; align them first (xarray.align(..., join='inner'))"
+            ) from None
+        template = xr.broadcast(*arrays.values())[0]
     dims = template.dims
     recipe.kind = "xarray"
     recipe.template = (dims, {k: v for k, v in template.coords.items()})
@@ -300,7 +309,7 @@ def init_body(body, Rx, Ry, E, nu) -> None:
     for name, value in given.items():
         field = getattr(checked, name)
         if library(value) == "pint":
-            field = value._REGISTRY.Quantity(field, _BODY_UNITS[name] or "dimensionless")
+            field = value._REGISTRY.Quantity(field, _unit(value._REGISTRY, _BODY_UNITS[name]))
         elif library(value) in _WRAPPERS:
             field = _wrap_like(value, field)
         setter(body, name, field)
@@ -315,7 +324,7 @@ def _body_items(body, prefix):
 
 def contact(body1, body2, name, value, angle):
     """hertz.contact for pandas, xarray or pint inputs: unwrap, solve, wrap."""
-    from ._contact import Body, Contact
+    from ._contact import Body, Contact, _Deferred
     from ._contact import contact as solve
 
     items = (_body_items(body1, "body1") + _body_items(body2, "body2")
@@ -324,7 +333,16 @@ def contact(body1, body2, name, value, angle):
     result = solve(Body(*plain[0:4]), Body(*plain[4:8]), angle=plain[8],
                    **{name: plain[9]})
     fields = [recipe.wrap(getattr(result, k), u, k) for k, u in CONTACT_UNITS.items()]
-    geometry = tuple(recipe.wrap(getattr(result, k), u, k) for k, u in GEOMETRY_UNITS.items())
+
+    def wrap_geometry(values):
+        return tuple(recipe.wrap(v, u, k)
+                     for v, (k, u) in zip(values, GEOMETRY_UNITS.items(), strict=True))
+
+    geometry = result._geometry
+    if type(geometry) is _Deferred:  # computed (and wrapped) when first read, as for numpy
+        geometry = _Deferred(geometry.inputs, geometry.shape, wrap_geometry)
+    else:
+        geometry = wrap_geometry(getattr(result, k) for k in GEOMETRY_UNITS)
     return Contact(*fields, geometry, (body1.nu, body2.nu))
 
 
