@@ -34,6 +34,7 @@ from __future__ import annotations
 
 import functools
 import math
+import re
 
 import numpy as np
 
@@ -127,6 +128,42 @@ class Recipe:
         if self.registry is not None:
             value = self.registry.Quantity(value, _unit(self.registry, unit))
         return value
+
+    def labelled(self, exc: ValueError) -> ValueError:
+        """``exc`` with the pandas labels or xarray coordinates of the index it names."""
+        found = _AT_INDEX.search(str(exc))
+        if self.kind is None or found is None:
+            return exc
+        position = tuple(int(i) for i in re.findall(r"\d+", found.group(1)))
+        if self.kind == "xarray":
+            dims, coords = self.template
+            if len(position) != len(dims):
+                return exc
+            parts = [f"{d}={_item(coords[d].values[i]) if d in coords else i!r}"
+                     for d, i in zip(dims, position, strict=True)]
+            label = "(" + ", ".join(parts) + ")"
+        elif self.kind == "series" and len(position) == 1:
+            label = _item(self.template.index[position[0]])
+            if label == position[0]:  # a default RangeIndex: nothing to add
+                return exc
+            label = f"(label {label!r})"
+        elif self.kind == "frame" and len(position) == 2:
+            row, column = position
+            label = (f"(row {_item(self.template.index[row])!r}, "
+                     f"column {_item(self.template.columns[column])!r})")
+        else:
+            return exc
+        text = str(exc)
+        return ValueError(f"{text[:found.end()]} {label}{text[found.end():]}")
+
+
+#: where a message names the index of the bad element (see _validate.index_text)
+_AT_INDEX = re.compile(r"at index (\d+|\((?:\d+, )*\d+,?\))")
+
+
+def _item(value):
+    """A numpy scalar label as the Python value it stands for."""
+    return value.item() if hasattr(value, "item") else value
 
 
 @functools.lru_cache(maxsize=64)
@@ -300,11 +337,21 @@ def init_body(body, Rx, Ry, E, nu) -> None:
     from ._contact import Body
 
     given = {"Rx": Rx, "Ry": Ry, "E": E, "nu": nu}
-    plain = {}
+    plain, recipes = {}, {}
     for name, value in given.items():
-        values, _ = unwrap([(name, value, _BODY_UNITS[name])])
+        values, recipes[name] = unwrap([(name, value, _BODY_UNITS[name])])
         plain[name] = values[0]
-    checked = Body(**plain)
+    try:
+        checked = Body(**plain)
+    except ValueError as exc:
+        # which field: check each alone beside valid stand-ins, for its labels
+        stand_in = {"Rx": 1.0, "Ry": 1.0, "E": 1.0, "nu": 0.3}
+        for name in given:
+            try:
+                Body(**{**stand_in, name: plain[name]})
+            except ValueError as alone:
+                raise recipes[name].labelled(alone) from None
+        raise exc from None  # pragma: no cover - some field fails alone
     setter = object.__setattr__
     for name, value in given.items():
         field = getattr(checked, name)
@@ -330,8 +377,11 @@ def contact(body1, body2, name, value, angle):
     items = (_body_items(body1, "body1") + _body_items(body2, "body2")
              + [("angle", angle, RAD), (name, value, GIVEN_UNITS[name])])
     plain, recipe = unwrap(items)
-    result = solve(Body(*plain[0:4]), Body(*plain[4:8]), angle=plain[8],
-                   **{name: plain[9]})
+    try:
+        result = solve(Body(*plain[0:4]), Body(*plain[4:8]), angle=plain[8],
+                       **{name: plain[9]})
+    except ValueError as exc:
+        raise recipe.labelled(exc) from None
     fields = [recipe.wrap(getattr(result, k), u, k) for k, u in CONTACT_UNITS.items()]
 
     def wrap_geometry(values):
@@ -354,7 +404,10 @@ def line_contact(body1, body2, load_per_length):
     items = (_body_items(body1, "body1") + _body_items(body2, "body2")
              + [("load_per_length", load_per_length, N_PER_M)])
     plain, recipe = unwrap(items)
-    result = solve(Body(*plain[0:4]), Body(*plain[4:8]), plain[8])
+    try:
+        result = solve(Body(*plain[0:4]), Body(*plain[4:8]), plain[8])
+    except ValueError as exc:
+        raise recipe.labelled(exc) from None
     return LineContact(*(recipe.wrap(getattr(result, k), u, k) for k, u in LINE_UNITS.items()),
                        (body1.nu, body2.nu))
 
@@ -364,7 +417,11 @@ def ellipticity(alpha, iterations, out):
     from ._ellipse import ellipticity as solve
 
     plain, recipe = unwrap([("alpha", alpha, ONE)])
-    return recipe.wrap(solve(plain[0], iterations=iterations, out=out), ONE, "ellipticity")
+    try:
+        lam = solve(plain[0], iterations=iterations, out=out)
+    except ValueError as exc:
+        raise recipe.labelled(exc) from None
+    return recipe.wrap(lam, ONE, "ellipticity")
 
 
 #: what the methods of a contact read: its fields with their units
@@ -408,7 +465,10 @@ def call_method(result, method: str, arguments, unit, *options):
         else:
             out = dask_map(evaluate, plain, trailing=(3, 3) if tensor else ())
     else:
-        out = evaluate(*plain)
+        try:
+            out = evaluate(*plain)
+        except ValueError as exc:
+            raise recipe.labelled(exc) from None
     if unit is None:
         return type(out)(*(recipe.wrap(getattr(out, f.name), M if f.name[:2] in
                                        ("x_", "y_", "z_") else PA, f.name)

@@ -118,11 +118,18 @@ def test_pandas_bad_values_name_parameter_value_and_index(pd, table):
     load = table["load"].copy()
     load.iloc[2] = -1.0
     with pytest.raises(ValueError, match=r"load must be a finite value >= 0 in N, got -1\.0 at "
-                                         r"index 2$"):
+                                         r"index 2 \(label 'ball2'\)$"):
         hertz.contact(hertz.Body.sphere(table["radius"], *STEEL), plane, load=load)
     radius = pd.Series([0.01, None, 0.02], dtype="Float64")  # a missing value
     with pytest.raises(ValueError, match=r"^Rx must be a nonzero radius.*got nan at index 1$"):
         hertz.Body.sphere(radius, *STEEL)
+    nu = pd.Series([0.3, 0.3, 0.7], index=["p", "q", "r"])
+    with pytest.raises(ValueError, match=r"^nu must be a Poisson's ratio.*got 0\.7 at index 2 "
+                                         r"\(label 'r'\)$"):
+        hertz.Body.sphere(0.01, 210e9, nu)
+    frame = pd.DataFrame({"x": [1.0, 2.0], "y": [3.0, -4.0]}, index=["r1", "r2"])
+    with pytest.raises(ValueError, match=r"got -4\.0 at index \(1, 1\) \(row 'r2', column 'y'\)$"):
+        hertz.contact(hertz.Body.sphere(0.01, *STEEL), plane, load=frame)
     with pytest.raises(TypeError, match="Rx must be a real number"):
         hertz.Body.sphere(pd.Series(["a", "b"]), *STEEL)
 
@@ -209,6 +216,9 @@ def test_dataarray_coordinates_must_match(xr):
     with pytest.raises(ValueError, match=r"load of shape \(3,\) does not broadcast"):
         hertz.contact(hertz.Body.sphere(radius, *STEEL), hertz.Body.plane(*STEEL),
                       load=np.ones(3))
+    load = xr.DataArray([1.0, -5.0], dims="load")
+    with pytest.raises(ValueError, match=r"got -5\.0 at index \(0, 1\) \(case=0, load=1\)$"):
+        hertz.contact(hertz.Body.sphere(radius, *STEEL), hertz.Body.plane(*STEEL), load=load)
 
 
 def test_dask_backed_dataarrays_stay_lazy(xr):
