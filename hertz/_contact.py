@@ -256,9 +256,10 @@ class Contact:
     tensor has no pandas form and is a numpy array (..., 3, 3) in the
     index's order, and an xarray one has the dimensions ``row`` and
     ``column`` (labels x, y, z) last.  Mixing dask with pandas, pandas with
-    xarray, or pint with either is refused.  A bad value in a dask array
-    raises when its block is computed, naming the parameter, the value and
-    its index in the whole (broadcast) array.
+    xarray, or pint with either is refused.  Errors for pandas and xarray
+    inputs add the labels (coordinates) of the index they name; a bad value
+    in a dask array raises when its block is computed, naming the
+    parameter, the value and its index in the whole (broadcast) array.
     """
 
     a: float | np.ndarray
