@@ -424,9 +424,8 @@ def ellipticity(alpha, iterations, out):
     return recipe.wrap(lam, ONE, "ellipticity")
 
 
-#: what the methods of a contact read: its fields with their units
-_POINT_FIELDS = {"a": M, "b": M, "load": N, "p0": PA}
-_LINE_FIELDS = {"half_width": M, "p0": PA}
+#: the fields of a contact with their units, from which a plain twin is made
+_POINT_FIELDS = {**CONTACT_UNITS, **GEOMETRY_UNITS}
 
 
 def call_method(result, method: str, arguments, unit, *options):
@@ -437,7 +436,7 @@ def call_method(result, method: str, arguments, unit, *options):
     from ._contact import Contact, LineContact
 
     kind = type(result)
-    own = _POINT_FIELDS if kind is Contact else _LINE_FIELDS
+    own = _POINT_FIELDS if kind is Contact else LINE_UNITS
     items = ([(k, getattr(result, k), u) for k, u in own.items()]
              + [("nu1", result._nu[0], ONE), ("nu2", result._nu[1], ONE)] + list(arguments))
     plain, recipe = unwrap(items)
@@ -447,13 +446,13 @@ def call_method(result, method: str, arguments, unit, *options):
                     for v, (name, _, _) in zip(plain[nown:], arguments, strict=True)]
 
     def evaluate(*values):
-        fields = dict(zip(own, values[:len(own)], strict=True))
-        nu = values[len(own):nown]
+        # a contact of plain values (whole arrays, or a dask block of each), every field
+        # included, on which the method runs as for numpy input
+        fields, nu = values[:len(own)], values[len(own):nown]
         if kind is Contact:
-            twin = Contact(fields["a"], fields["b"], fields["load"], fields["p0"], None, None,
-                           (), nu)
+            twin = Contact(*fields[:6], tuple(fields[6:]), nu)
         else:
-            twin = LineContact(fields["half_width"], fields["p0"], None, None, None, nu)
+            twin = LineContact(*fields, nu)
         return getattr(kind, method)(twin, *values[nown:], *options)
 
     tensor = method == "stress"
