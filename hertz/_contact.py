@@ -245,8 +245,8 @@ class Contact:
     Notes
     -----
     Inputs of other libraries give results of the same kind, held in the
-    fields themselves (the geometry fields are then computed at once):
-    pandas Series (or DataFrames) give Series on the same index, named
+    fields themselves (the geometry fields computed when first read, as for
+    numpy arrays): pandas Series (or DataFrames) give Series on the same index, named
     after the field (every pandas input must have the same index: hertz
     does not align); xarray DataArrays give DataArrays on the dimensions
     broadcast by name; pint Quantities are converted to SI and give
