@@ -360,3 +360,25 @@ def test_complex_and_non_numeric_pandas_are_refused(pd):
         hertz.Body.sphere(pd.Series([1e-2 + 1e-3j]), *STEEL)
     with pytest.raises(TypeError, match=r"^Rx must be a number, an array, a pandas Series"):
         hertz.Body.sphere(pd.Index([1e-2]), *STEEL)
+
+
+def test_quantities_of_dask_arrays_stay_lazy(ureg):
+    da = pytest.importorskip("dask.array")
+    radius = da.from_array(np.array([4.0, 6.0, 8.0]), chunks=2) * ureg.mm
+    c = hertz.contact(hertz.Body.sphere(radius, *STEEL), hertz.Body.plane(*STEEL), load=10.0)
+    assert isinstance(c.a.magnitude, da.Array) and c.a.units == ureg.m
+    ref = hertz.contact(hertz.Body.sphere(np.array([4.0, 6.0, 8.0]) * 1e-3, *STEEL),
+                        hertz.Body.plane(*STEEL), load=10.0)
+    np.testing.assert_array_equal(c.a.magnitude.compute(), ref.a)
+
+
+def test_line_contact_of_dataarrays(xr):
+    radius = xr.DataArray([4e-3, 8e-3], dims="roller", coords={"roller": ["r4", "r8"]})
+    load = xr.DataArray([1e4, 1e5, 1e6], dims="load")
+    plane = hertz.Body.plane(*STEEL)
+    lc = hertz.line_contact(hertz.Body.cylinder(radius, *STEEL), plane, load)
+    ref = hertz.line_contact(hertz.Body.cylinder(radius.values[:, None], *STEEL), plane,
+                             load.values)
+    assert lc.half_width.dims == ("roller", "load")
+    np.testing.assert_array_equal(lc.half_width.values, ref.half_width)
+    np.testing.assert_array_equal(lc.stress(0.0, 1e-5).values, ref.stress(0.0, 1e-5))
