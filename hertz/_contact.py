@@ -13,7 +13,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from . import _ufuncs
+from . import _interop, _ufuncs
 from ._validate import (
     as_float_array,
     broadcast_shape,
@@ -81,6 +81,11 @@ class Body:
     float64 copy of an array (changing the caller's array later changes
     nothing); a dask array is kept as it is and checked when computed.
 
+    A pandas Series or DataFrame, an xarray DataArray or a pint Quantity is
+    checked and kept in its kind, around the body's own copy of the values;
+    a Quantity is converted to SI (radii in m, E in Pa, nu a plain number),
+    and one of another dimension is a TypeError.
+
     Parameters
     ----------
     Rx, Ry : float or array_like
@@ -121,6 +126,9 @@ class Body:
 
     def __init__(self, Rx, Ry, E, nu):
         scalar = type(Rx) is type(Ry) is type(E) is type(nu) is float
+        if not scalar and _interop.any_wrapped(Rx, Ry, E, nu):
+            _interop.init_body(self, Rx, Ry, E, nu)  # pandas, xarray, pint
+            return
         if not scalar:
             Rx, Ry, E, nu = _real(Rx, "Rx"), _real(Ry, "Ry"), _real(E, "E"), _real(nu, "nu")
             scalar = type(Rx) is type(Ry) is type(E) is type(nu) is float
@@ -254,19 +262,22 @@ _GEOMETRY_FIELDS = ("ellipticity", "alpha", "m", "K", "E", "e_star", "rho_x", "r
 
 
 class _Deferred:
-    """Inputs from which a batch's geometry fields are computed on first access."""
+    """Inputs from which a batch's geometry fields are computed on first access
+    (then passed to ``wrap``, if given: the pandas, xarray or pint form)."""
 
-    __slots__ = ("inputs", "shape")
+    __slots__ = ("inputs", "shape", "wrap")
 
-    def __init__(self, inputs, shape):
-        self.inputs, self.shape = inputs, shape
+    def __init__(self, inputs, shape, wrap=None):
+        self.inputs, self.shape, self.wrap = inputs, shape, wrap
 
 
 def _geometry_field(k: int, doc: str):
     def get(self):
         fields = self._geometry
         if type(fields) is _Deferred:
-            fields = _solve_geometry(fields.inputs, fields.shape)
+            deferred, fields = fields, _solve_geometry(fields.inputs, fields.shape)
+            if deferred.wrap is not None:
+                fields = deferred.wrap(fields)
             object.__setattr__(self, "_geometry", fields)
         return fields[k]
 
@@ -327,6 +338,25 @@ class Contact:
     See Also
     --------
     contact : the function that makes a Contact.
+
+    Notes
+    -----
+    Inputs of other libraries give results of the same kind, held in the
+    fields themselves (the geometry fields computed when first read, as for
+    numpy arrays): pandas Series (or DataFrames) give Series on the same index, named
+    after the field (every pandas input must have the same index: hertz
+    does not align); xarray DataArrays give DataArrays on the dimensions
+    broadcast by name; pint Quantities are converted to SI and give
+    Quantities in SI units (``c.a.to("mm")``); dask arrays give dask arrays,
+    computed when asked.  The methods (``pressure``, ``stress``,
+    ``subsurface``, ``first_yield_load``) follow the same rules; a stress
+    tensor has no pandas form and is a numpy array (..., 3, 3) in the
+    index's order, and an xarray one has the dimensions ``row`` and
+    ``column`` (labels x, y, z) last.  Mixing dask with pandas, pandas with
+    xarray, or pint with either is refused.  Errors for pandas and xarray
+    inputs add the labels (coordinates) of the index they name; a bad value
+    in a dask array raises when its block is computed, naming the
+    parameter, the value and its index in the whole (broadcast) array.
 
     Examples
     --------
@@ -422,6 +452,8 @@ class Contact:
         >>> bool(c.pressure(0.0, 0.0) == c.p0), float(c.pressure(c.a, 0.0))
         (True, 0.0)
         """
+        if _interop.any_foreign(self.a, x, y):
+            return _interop.call_method(self, "pressure", (("x", x, "m"), ("y", y, "m")), "Pa")
         x, y = _stress.coordinate(x, "x", "any"), _stress.coordinate(y, "y", "any")
         with np.errstate(divide="ignore", invalid="ignore"):
             return _semi_elliptic(self.p0, np.square(x / self.a) + np.square(y / self.b))
@@ -465,6 +497,9 @@ class Contact:
         >>> bool(abs(s[2, 2] + c.p0) < 1e-6 * c.p0)  # sigma_zz = -p0 at the centre
         True
         """
+        if _interop.any_foreign(self.a, x, y, z):
+            return _interop.call_method(self, "stress", (("x", x, "m"), ("y", y, "m"),
+                                                         ("z", z, "m")), "Pa", body)
         return _stress.point_stress(self.a, self.b, self.p0, _stress.poisson_of(self._nu, body),
                                     x, y, z)
 
@@ -499,6 +534,8 @@ class Contact:
         >>> print(f"{m.tau_max / c.p0:.4f} p0 at z = {m.z_tau_max / c.a:.4f} a")
         0.3100 p0 at z = 0.4809 a
         """
+        if _interop.any_foreign(self.a):
+            return _interop.call_method(self, "subsurface", (), None, body)
         return _stress.subsurface(self.a, self.b, self.p0, _stress.poisson_of(self._nu, body))
 
     def first_yield_load(self, yield_strength, body=1, criterion="von_mises"):
@@ -547,6 +584,10 @@ class Contact:
         >>> hertz.contact(ball, race, load=0.0).first_yield_load(1.5e9) == c.first_yield_load(1.5e9)
         True
         """
+        if _interop.any_foreign(self.a, yield_strength):
+            return _interop.call_method(self, "first_yield_load",
+                                        (("yield_strength", yield_strength, "Pa"),), "N", body,
+                                        criterion)
         nu = _stress.poisson_of(self._nu, body)
         lam = self.ellipticity
         unit = _stress.subsurface(1.0, 1.0 / lam, 1.0, nu)  # the maxima for a = 1, p0 = 1
@@ -561,9 +602,6 @@ _ufuncs.register_contact_type(Contact)
 
 def _solve_geometry(inputs, shape):
     """The nine geometry fields of a batch, broadcast to its shape."""
-    if any(is_duck_array(x) for x in inputs):
-        return tuple(_dask_apply(_ufuncs.contact_geometry, inputs, len(_GEOMETRY_FIELDS),
-                                 shape))
     fields = _ufuncs.contact_geometry(*inputs)
     _read_only(*fields)
     return tuple(x if x.shape == shape else np.broadcast_to(x, shape) for x in fields)
@@ -593,6 +631,10 @@ class LineContact:
     The approach of a line contact depends on the size of the bodies, not
     only on the contact, and is not given.  Array fields are the contact's
     own read-only arrays.
+
+
+    pandas, xarray, pint and dask inputs give results of their kind, as for
+    :class:`Contact` (load_per_length in N/m).
 
     Examples
     --------
@@ -651,6 +693,8 @@ class LineContact:
         >>> lc.pressure([0.0, 0.6 * lc.half_width, lc.half_width]) / lc.p0
         array([1. , 0.8, 0. ])
         """
+        if _interop.any_foreign(self.half_width, x):
+            return _interop.call_method(self, "pressure", (("x", x, "m"),), "Pa")
         x = _stress.coordinate(x, "x", "any")
         with np.errstate(divide="ignore", invalid="ignore"):
             return _semi_elliptic(self.p0, np.square(x / self.half_width))
@@ -698,6 +742,9 @@ class LineContact:
         >>> print(f"tau = {(s[0, 0] - s[2, 2]) / 2:.4f} p0")
         tau = 0.3003 p0
         """
+        if _interop.any_foreign(self.half_width, x, z):
+            return _interop.call_method(self, "stress", (("x", x, "m"), ("z", z, "m")), "Pa",
+                                        body)
         return _stress.line_stress(self.half_width, self.p0,
                                    _stress.poisson_of(self._nu, body), x, z)
 
@@ -734,6 +781,8 @@ class LineContact:
         ...       f"{m.z_von_mises / lc.half_width:.4f} b")
         von Mises 0.5575 p0 at z = 0.7043 b
         """
+        if _interop.any_foreign(self.half_width):
+            return _interop.call_method(self, "subsurface", (), None, body)
         return _stress.line_subsurface(self.half_width, self.p0,
                                        _stress.poisson_of(self._nu, body))
 
@@ -763,21 +812,6 @@ def _first_error(status_ufunc, scalar, args, shape, extra=()):
     return None  # pragma: no cover - the status pass and the loop agree
 
 
-def _dask_shape(args):
-    return np.broadcast_shapes(*(np.shape(a) for a in args))
-
-
-def _dask_apply(ufunc, args, nout, shape):
-    """The ufunc over dask (duck) arrays, lazily: a tuple of nout dask arrays of ``shape``."""
-    import dask.array as da
-
-    signature = ",".join(["()"] * len(args)) + "->" + ",".join(["()"] * nout)
-    out = da.apply_gufunc(ufunc, signature, *args, output_dtypes=(np.float64,) * nout,
-                          vectorize=False)
-    out = out if isinstance(out, tuple) else (out,)
-    return tuple(x if x.shape == shape else da.broadcast_to(x, shape) for x in out)
-
-
 def contact(body1: Body, body2: Body, load=None, angle=0.0, *, approach=None,
             p0=None) -> Contact:
     """Hertz point contact of two elastic bodies pressed together.
@@ -804,7 +838,8 @@ def contact(body1: Body, body2: Body, load=None, angle=0.0, *, approach=None,
         Semi-axes, pressure, approach, stiffness and the ellipse parameters:
         Python floats for scalar input, else arrays of the broadcast shape.
         Dask arrays in give a Contact of dask arrays, computed (and checked)
-        only when asked.
+        only when asked; pandas, xarray and pint inputs give Series,
+        DataArrays and Quantities (see :class:`Contact`).
 
     Raises
     ------
@@ -860,13 +895,14 @@ def contact(body1: Body, body2: Body, load=None, angle=0.0, *, approach=None,
         except OverflowError:  # a Python int beyond the double range: name it
             int_to_float(value, name), int_to_float(angle, "angle")
             raise
+    if _interop.any_wrapped(value, angle, body1.Rx, body1.Ry, body1.E, body1.nu, body2.Rx,
+                            body2.Ry, body2.E, body2.nu):
+        return _interop.contact(body1, body2, name, value, angle)  # pandas, xarray, pint
     args = [body1.Rx, body1.Ry, body2.Rx, body2.Ry, _kept_arg(angle, "angle"), body1.E,
             body1.nu, body2.E, body2.nu, _real_arg(value, name)]
     geometry = args[:9]
     if any(is_duck_array(a) for a in args):
-        shape = _dask_shape(args)
-        return Contact(*_dask_apply(fused, args, 6, shape), _Deferred(geometry, shape),
-                       (body1.nu, body2.nu))
+        return _interop.dask_contact(fused, args, (body1.nu, body2.nu))
     geometry_shape = broadcast_shape(**dict(zip(_GEOMETRY_NAMES, geometry, strict=True)))
     shape = broadcast_shape(**dict(zip(_GEOMETRY_NAMES, geometry, strict=True)),
                             **{name: args[9]})
@@ -945,11 +981,13 @@ def line_contact(body1: Body, body2: Body, load_per_length) -> LineContact:
         return LineContact(*_ufuncs.line_contact(body1.Rx, body1.Ry, body2.Rx, body2.Ry,
                                                  body1.E, body1.nu, body2.E, body2.nu,
                                                  load_per_length), (body1.nu, body2.nu))
+    if _interop.any_wrapped(load_per_length, body1.Rx, body1.Ry, body1.E, body1.nu, body2.Rx,
+                            body2.Ry, body2.E, body2.nu):
+        return _interop.line_contact(body1, body2, load_per_length)  # pandas, xarray, pint
     args = [body1.Rx, body1.Ry, body2.Rx, body2.Ry, body1.E, body1.nu, body2.E, body2.nu,
             _real_arg(load_per_length, "load_per_length")]
     if any(is_duck_array(a) for a in args):
-        return LineContact(*_dask_apply(_ufuncs.line, args, 5, _dask_shape(args)),
-                           (body1.nu, body2.nu))
+        return _interop.dask_line(args, (body1.nu, body2.nu))
     names = [n for n in _GEOMETRY_NAMES if n != "angle"] + ["load_per_length"]
     shape = broadcast_shape(**dict(zip(names, args, strict=True)))
     try:

@@ -16,7 +16,7 @@ from typing import NamedTuple
 
 import numpy as np
 
-from . import _ufuncs
+from . import _interop, _ufuncs
 from ._validate import as_float_array, first_failure, is_duck_array, with_index
 
 #: Bailey steps taken by default; one reaches full double precision.
@@ -79,9 +79,9 @@ def ellipticity(alpha, *, iterations=DEFAULT_ITERATIONS, out=None):
     the ratio of the relative curvatures along x and y.
 
     Elementwise like a numpy ufunc: any real dtype in, float64 out,
-    broadcasting, ``out=``, and arrays of other libraries (dask) handled by
-    their ``__array_ufunc__``: a dask array in gives a dask array out,
-    computed only when asked.
+    broadcasting, ``out=``; a dask array in gives a dask array out, computed
+    only when asked, and a pandas Series, an xarray DataArray or a
+    dimensionless pint Quantity gives one of its kind.
 
     Parameters
     ----------
@@ -138,11 +138,13 @@ def ellipticity(alpha, *, iterations=DEFAULT_ITERATIONS, out=None):
     if out is None and type(alpha) is float:
         return float(ufunc(alpha))
     if is_duck_array(alpha):
+        if out is None:  # block by block; an error names the index in the whole array
+            return _interop.dask_map(ufunc, [alpha], names=["alpha"])
         # dtype given, so that dask need not try the ufunc on uninitialised
         # memory to learn the result type (a ValueError there would hide it)
-        if out is None:
-            return ufunc(alpha, dtype=np.float64)
         return ufunc(alpha, out=out, dtype=np.float64)
+    if _interop.any_wrapped(alpha):
+        return _interop.ellipticity(alpha, iterations, out)  # pandas, xarray, pint
     arr = as_float_array(alpha, "alpha")
     try:
         lam = ufunc(arr) if out is None else ufunc(arr, out=out)

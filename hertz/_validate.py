@@ -112,10 +112,14 @@ def with_index(exc: ValueError, shape: tuple[int, ...], flat_index: int) -> Valu
 
 
 def is_duck_array(value) -> bool:
-    """Whether ``value`` is an array of another library (dask, ...) that numpy
-    dispatches to through ``__array_ufunc__``: such input is passed on unconverted."""
-    return (hasattr(value, "__array_ufunc__") and not isinstance(value, (np.ndarray, np.generic))
-            and value.__array_ufunc__ is not None)
+    """Whether ``value`` is a dask array: such input is passed on unconverted and
+    computed lazily.  (pandas, xarray and pint objects are unwrapped by
+    ``hertz._interop``; other array types are converted with numpy.asarray.)"""
+    return not isinstance(value, _PLAIN) and type(value).__module__.startswith("dask.")
+
+
+#: types that are never dask arrays, ruled out first (their module name costs more to read)
+_PLAIN = (float, int, np.ndarray, np.generic)
 
 
 def broadcast_shape(**arrays) -> tuple[int, ...]:
