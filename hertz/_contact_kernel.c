@@ -1247,7 +1247,8 @@ geometry_and_coefficients(ptrdiff_t n, const double *const in[HERTZ_NGEOMETRY],
                                          scale2(s.esm[i], s.ese[i]),
                                          scale2(s.rx[i], s.ce[i]) / s.pabs[i],
                                          scale2(s.ry[i], s.ce[i]) / s.pabs[i],
-                                         with_theta ? theta[i] : 0.0};
+                                         /* 0 for every circle */
+                                         with_theta && s.alpha[i] != 1.0 ? theta[i] : 0.0};
             for (int k = 0; k < HERTZ_NFIELDS; ++k) {
                 g[k * n + i] = row[k];
             }

@@ -170,6 +170,16 @@ def test_impossible_contacts_at_angles_down_to_1e_12_are_refused_in_arrays_too()
                 hertz.contact(*args, load=1.0, angle=np.array([angle, 0.3]))
 
 
+def test_crossed_cylinders_make_a_circle_with_axis_angle_zero():
+    cyl = hertz.Body.cylinder(0.01, *STEEL)
+    for angle in (math.pi / 2, -math.pi / 2):  # (3 pi / 2 in double is 3.7e-16 off a circle)
+        c = hertz.contact(cyl, cyl, load=100.0, angle=angle)
+        assert c.alpha == 1.0 and c.major_axis_angle == 0.0
+    c = hertz.contact(hertz.Body.cylinder([0.01, 0.01], *STEEL), cyl, load=100.0,
+                      angle=[math.pi / 2, 1.0])
+    assert c.alpha[0] == 1.0 and c.major_axis_angle[0] == 0.0 and c.major_axis_angle[1] != 0.0
+
+
 def test_a_tiny_radius_is_beyond_the_double_range_not_a_line_contact():
     with pytest.raises(ValueError, match="within rounding of a line contact"):
         hertz.contact(hertz.Body(5e-324, 1.0, *STEEL), hertz.Body.plane(*STEEL), load=1.0)
