@@ -401,7 +401,7 @@ HERTZ_INLINE double
 curvature_determinant(double sx, double sy, double cx, double cy, double gg, double ss,
                       double cc, double *terms)
 {
-    double p = sx * sy, one_sign = (p >= 0.0) == (gg >= 0.0) ? 1.0 : 0.0;
+    double p = sx * sy, one_sign = p * gg >= 0.0; /* (a product below 2^-1074 counts as 0) */
     double u = one_sign != 0.0 ? p : p * cc, v = one_sign != 0.0 ? gg * ss : (cx * cy) * ss;
     *terms = fabs(u) + fabs(v);
     return u + v;
@@ -826,8 +826,8 @@ fast_geometry_body(ptrdiff_t n, const double *const in[HERTZ_NGEOMETRY], stage1 
             ry = ry < rx ? ry : rx;
             rx = ss == 0.0 ? (sx > sy ? sx : sy) : rx; /* aligned principal planes */
             ry = ss == 0.0 ? (sx > sy ? sy : sx) : ry;
-            bad = ss == 0.0 ? bad : (det >= DBL_MIN ? bad : 1.0);
-            bad = ss == 0.0 ? bad : (trace > 0.0 ? bad : 1.0);
+            /* (written as one select: two keep GCC 12 from vectorising the loop) */
+            bad = ss == 0.0 ? bad : (det >= DBL_MIN ? (trace > 0.0 ? bad : 1.0) : 1.0);
             /* (1') or the trace cancelling: the scalar code's double-double */
             bad = ss == 0.0 ? bad : (cancels(sx, sy, trace, det, terms) ? 1.0 : bad);
         }
