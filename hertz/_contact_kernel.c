@@ -916,7 +916,7 @@ fast_geometry_aligned(ptrdiff_t n, const double *const in[HERTZ_NGEOMETRY],
  * *bad the element and its curvatures in *rho_x, *rho_y. */
 static int
 geometry_stage(ptrdiff_t n, const double *const in[HERTZ_NGEOMETRY], stage1 *s,
-               double *theta, ptrdiff_t *bad, double *rho_x, double *rho_y)
+               double *theta, ptrdiff_t *bad, hertz_scaled *rho_x, hertz_scaled *rho_y)
 {
     double turned = 0.0;
     for (ptrdiff_t i = 0; i < n; ++i) {
@@ -956,8 +956,10 @@ geometry_stage(ptrdiff_t n, const double *const in[HERTZ_NGEOMETRY], stage1 *s,
         s->pabs[i] = pabs;
         if (code != HERTZ_OK) {
             *bad = i;
-            *rho_x = scale2(rx, e) / pabs;
-            *rho_y = scale2(ry, e) / pabs;
+            rho_x->m = rx / pabs;
+            rho_x->e = e;
+            rho_y->m = ry / pabs;
+            rho_y->e = e;
             return code;
         }
         s->alpha[i] = rx / ry;
@@ -1225,7 +1227,8 @@ hertz_given_block(ptrdiff_t n, int mode, const double *const c[HERTZ_NCOEFFICIEN
 static int
 geometry_and_coefficients(ptrdiff_t n, const double *const in[HERTZ_NGEOMETRY],
                           double *const c[HERTZ_NCOEFFICIENTS], double *const g,
-                          int with_theta, ptrdiff_t *bad, double *rho_x, double *rho_y)
+                          int with_theta, ptrdiff_t *bad, hertz_scaled *rho_x,
+                          hertz_scaled *rho_y)
 {
     stage1 s;
     double lam[HERTZ_BLOCK], m[HERTZ_BLOCK], K[HERTZ_BLOCK], E[HERTZ_BLOCK];
@@ -1260,15 +1263,15 @@ geometry_and_coefficients(ptrdiff_t n, const double *const in[HERTZ_NGEOMETRY],
 int
 hertz_geometry_block(ptrdiff_t n, const double *const in[HERTZ_NGEOMETRY],
                      double *const c[HERTZ_NCOEFFICIENTS], double *fields, ptrdiff_t *bad,
-                     double *rho_x, double *rho_y)
+                     hertz_scaled *rho_x, hertz_scaled *rho_y)
 {
     return geometry_and_coefficients(n, in, c, fields, fields != NULL, bad, rho_x, rho_y);
 }
 
 int
 hertz_contact_block(ptrdiff_t n, const double *const in[HERTZ_NGEOMETRY + 1], int mode,
-                    double *const out[HERTZ_NGIVEN], ptrdiff_t *bad, double *rho_x,
-                    double *rho_y)
+                    double *const out[HERTZ_NGIVEN], ptrdiff_t *bad, hertz_scaled *rho_x,
+                    hertz_scaled *rho_y)
 {
     double cbuf[HERTZ_NCOEFFICIENTS][HERTZ_BLOCK];
     double *c[HERTZ_NCOEFFICIENTS];
@@ -1285,14 +1288,16 @@ hertz_contact_block(ptrdiff_t n, const double *const in[HERTZ_NGEOMETRY + 1], in
 /* Line contact (Johnson sec. 4.3): half_width^2 = 4 P' / (pi E* rho),
  * p0^2 = P' E* rho / pi. */
 int
-hertz_line_contact(const double in[8], double load, double out[5], double *rho_x,
-                   double *rho_y)
+hertz_line_contact(const double in[8], double load, double out[5], hertz_scaled *rho_x,
+                   hertz_scaled *rho_y)
 {
     double rx = 0.0, ry = 0.0, rs, theta, e = 0.0;
     double rse, pabs;
     int code = curvatures(in, 0.0, &rx, &ry, &rs, &rse, &e, &pabs, &theta, 0);
-    *rho_x = scale2(rx, e) / pabs;
-    *rho_y = scale2(ry, e) / pabs;
+    rho_x->m = rx / pabs;
+    rho_x->e = e;
+    rho_y->m = ry / pabs;
+    rho_y->e = e;
     if (code == HERTZ_LINE) {
         code = HERTZ_OK;
     }

@@ -181,8 +181,12 @@ def test_crossed_cylinders_make_a_circle_with_axis_angle_zero():
 
 
 def test_a_tiny_radius_is_beyond_the_double_range_not_a_line_contact():
-    with pytest.raises(ValueError, match="within rounding of a line contact"):
+    """1/5e-324 = 2.024e323 1/m lies beyond the double range: the message still names it."""
+    with pytest.raises(ValueError, match=r"within rounding of a line contact: the principal "
+                                         r"relative curvatures 2\.02402e\+323 and 1 1/m"):
         hertz.contact(hertz.Body(5e-324, 1.0, *STEEL), hertz.Body.plane(*STEEL), load=1.0)
+    with pytest.raises(ValueError, match=r"curvatures 1 and -2\.02402e\+323 1/m"):
+        hertz.contact(hertz.Body(-5e-324, 1.0, *STEEL), hertz.Body.plane(*STEEL), load=1.0)
 
 
 def test_a_saddle_is_not_called_flat():
