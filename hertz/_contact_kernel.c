@@ -642,8 +642,8 @@ block_axis_angle(const double r[4], double angle)
     return axis_angle(g2 * f, (sx - sy) * f, ss, angle);
 }
 
-/* Principal relative curvatures rho_x >= rho_y (as rx 2^e and ry 2^e, *pabs =
- * 1), their sum (rs 2^rse) and the major-axis angle of one geometry, for any
+/* Principal relative curvatures rho_x >= rho_y (as rx 2^e and ry 2^e), their
+ * sum (rs 2^rse) and the major-axis angle of one geometry, for any
  * input: the scalar code, in exponent-scaled double-double (xdd).  The six
  * pair sums of eq. (1)-(2) are exact at any exponent (xdd_pair), rho_x rho_y
  * is (1'), and of the two eigenvalues
@@ -656,7 +656,7 @@ block_axis_angle(const double r[4], double angle)
  * rx, ry, e are set for the contact errors (the true curvatures). */
 static int
 curvatures(const double r[4], double angle, double *rx, double *ry, double *rs,
-           double *rse, double *e, double *pabs, double *theta, int with_theta)
+           double *rse, double *e, double *theta, int with_theta)
 {
     static const int names[4] = {HERTZ_R1X, HERTZ_R1Y, HERTZ_R2X, HERTZ_R2Y};
     for (int k = 0; k < 4; ++k) {
@@ -667,7 +667,6 @@ curvatures(const double r[4], double angle, double *rx, double *ry, double *rs,
     if (!isfinite(angle)) {
         return 1 + HERTZ_ANGLE;
     }
-    *pabs = 1.0;
     xdd Sx = xdd_pair(r[0], r[2]), Sy = xdd_pair(r[1], r[3]);
     xdd Cx = xdd_pair(r[0], r[3]), Cy = xdd_pair(r[1], r[2]);
     xdd G1 = xdd_pair(r[0], -r[1]), G2 = xdd_pair(r[2], -r[3]);
@@ -939,8 +938,8 @@ geometry_stage(ptrdiff_t n, const double *const in[HERTZ_NGEOMETRY], stage1 *s,
             theta[i] = block_axis_angle(r, in[HERTZ_ANGLE][i]);
             continue;
         }
-        double rx = 0.0, ry = 0.0, rs = 1.0, rse = 0.0, e = 0.0, pabs = 1.0, th = 0.0;
-        int code = curvatures(r, in[HERTZ_ANGLE][i], &rx, &ry, &rs, &rse, &e, &pabs, &th,
+        double rx = 0.0, ry = 0.0, rs = 1.0, rse = 0.0, e = 0.0, th = 0.0;
+        int code = curvatures(r, in[HERTZ_ANGLE][i], &rx, &ry, &rs, &rse, &e, &th,
                               theta != NULL);
         if (theta) {
             theta[i] = th;
@@ -953,12 +952,12 @@ geometry_stage(ptrdiff_t n, const double *const in[HERTZ_NGEOMETRY], stage1 *s,
         s->rx[i] = rx;
         s->ry[i] = ry;
         s->ce[i] = e;
-        s->pabs[i] = pabs;
+        s->pabs[i] = 1.0;
         if (code != HERTZ_OK) {
             *bad = i;
-            rho_x->m = rx / pabs;
+            rho_x->m = rx;
             rho_x->e = e;
-            rho_y->m = ry / pabs;
+            rho_y->m = ry;
             rho_y->e = e;
             return code;
         }
@@ -1291,12 +1290,11 @@ int
 hertz_line_contact(const double in[8], double load, double out[5], hertz_scaled *rho_x,
                    hertz_scaled *rho_y)
 {
-    double rx = 0.0, ry = 0.0, rs, theta, e = 0.0;
-    double rse, pabs;
-    int code = curvatures(in, 0.0, &rx, &ry, &rs, &rse, &e, &pabs, &theta, 0);
-    rho_x->m = rx / pabs;
+    double rx = 0.0, ry = 0.0, rs, rse, theta, e = 0.0;
+    int code = curvatures(in, 0.0, &rx, &ry, &rs, &rse, &e, &theta, 0);
+    rho_x->m = rx;
     rho_x->e = e;
-    rho_y->m = ry / pabs;
+    rho_y->m = ry;
     rho_y->e = e;
     if (code == HERTZ_LINE) {
         code = HERTZ_OK;
@@ -1315,7 +1313,7 @@ hertz_line_contact(const double in[8], double load, double out[5], hertz_scaled 
     if (!(load >= 0.0 && load <= DBL_MAX)) {
         return HERTZ_BAD_VALUE;
     }
-    hertz_scaled rho = split(rx / pabs); /* pabs within 2^+-960, rx about 1 */
+    hertz_scaled rho = split(rx); /* rx in [1, 2) */
     rho.e += e;
     out[2] = scale2(es.m, es.e);
     out[3] = scale2(rho.m, rho.e);

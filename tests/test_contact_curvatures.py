@@ -83,6 +83,7 @@ def check(b1, b2, angle, load=1.0):
         text = str(exc)
         if rho_y > 0 and rho_x / rho_y < LIMIT / 4:
             raise AssertionError(f"valid contact refused: {text} {b1} {b2} {angle}") from exc
+        assert "zero in every direction" not in text or rho_x == rho_y == 0, text
         named = re.search(rf"curvatures? {NUMBER} and {NUMBER} 1/m", text)
         if named and rho_y < 0 and abs(rho_x) < 1e300 and abs(rho_y) > 1e-300:
             # the message names the true curvatures (6 significant digits)
