@@ -653,10 +653,11 @@ block_axis_angle(const double r[4], double angle)
  * the one of larger modulus is taken from this sum (no cancellation) and the
  * other as det divided by it, so that both keep their sign and digits for
  * concave pairs (trace < 0) as for convex ones.  HERTZ_OK or an error code;
- * rx, ry, e are set for the contact errors (the true curvatures). */
+ * named = {rho_x, rho_y} (the true curvatures, each with its own exponent)
+ * for the contact errors. */
 static int
 curvatures(const double r[4], double angle, double *rx, double *ry, double *rs,
-           double *rse, double *e, double *theta, int with_theta)
+           double *rse, double *e, double *theta, int with_theta, hertz_scaled named[2])
 {
     static const int names[4] = {HERTZ_R1X, HERTZ_R1Y, HERTZ_R2X, HERTZ_R2Y};
     for (int k = 0; k < 4; ++k) {
@@ -711,6 +712,10 @@ curvatures(const double r[4], double angle, double *rx, double *ry, double *rs,
     *e = rho_x.h == 0.0 || (rho_y.h != 0.0 && rho_y.e > rho_x.e) ? rho_y.e : rho_x.e;
     *rx = xdd_at(rho_x, (int)*e);
     *ry = xdd_at(rho_y, (int)*e);
+    named[0].m = xdd_at(rho_x, rho_x.e); /* each at its own exponent, for the errors */
+    named[0].e = rho_x.e;
+    named[1].m = xdd_at(rho_y, rho_y.e);
+    named[1].e = rho_y.e;
     if (!(rho_y.h > 0.0)) {
         if (rho_x.h > 0.0 && rho_y.h == 0.0) {
             return HERTZ_LINE;
@@ -939,8 +944,9 @@ geometry_stage(ptrdiff_t n, const double *const in[HERTZ_NGEOMETRY], stage1 *s,
             continue;
         }
         double rx = 0.0, ry = 0.0, rs = 1.0, rse = 0.0, e = 0.0, th = 0.0;
+        hertz_scaled named[2] = {{0.0, 0.0}, {0.0, 0.0}};
         int code = curvatures(r, in[HERTZ_ANGLE][i], &rx, &ry, &rs, &rse, &e, &th,
-                              theta != NULL);
+                              theta != NULL, named);
         if (theta) {
             theta[i] = th;
         }
@@ -955,10 +961,8 @@ geometry_stage(ptrdiff_t n, const double *const in[HERTZ_NGEOMETRY], stage1 *s,
         s->pabs[i] = 1.0;
         if (code != HERTZ_OK) {
             *bad = i;
-            rho_x->m = rx;
-            rho_x->e = e;
-            rho_y->m = ry;
-            rho_y->e = e;
+            *rho_x = named[0];
+            *rho_y = named[1];
             return code;
         }
         s->alpha[i] = rx / ry;
@@ -1291,11 +1295,10 @@ hertz_line_contact(const double in[8], double load, double out[5], hertz_scaled 
                    hertz_scaled *rho_y)
 {
     double rx = 0.0, ry = 0.0, rs, rse, theta, e = 0.0;
-    int code = curvatures(in, 0.0, &rx, &ry, &rs, &rse, &e, &theta, 0);
-    rho_x->m = rx;
-    rho_x->e = e;
-    rho_y->m = ry;
-    rho_y->e = e;
+    hertz_scaled named[2] = {{0.0, 0.0}, {0.0, 0.0}};
+    int code = curvatures(in, 0.0, &rx, &ry, &rs, &rse, &e, &theta, 0, named);
+    *rho_x = named[0];
+    *rho_y = named[1];
     if (code == HERTZ_LINE) {
         code = HERTZ_OK;
     }
