@@ -138,7 +138,9 @@ ISSUE_SCENES = {
                                      (-3.2900000000000013e159, 1.0, *STEEL), 0.0),
     "conforming 1.2345e-25 beside 1e-300": ((1.2345e-25, 1e-300, *STEEL),
                                             (-1.2345000000000002e-25, 1e-300, *STEEL), 0.0),
-    "conforming 1e-295": ((1e-295, 1e-295, *STEEL), (-1.0000001e-295, 1e-295, *STEEL), 0.0),
+    "conforming 1e-295 beside 1e-300": ((1e-295, 1e-300, *STEEL),
+                                        (-1.0000001e-295, 1e-300, *STEEL), 0.0),
+    "conforming 1 beside 1e-295": ((1.0, 1e-295, *STEEL), (-1.0000001, 1e-295, *STEEL), 0.0),
     "conforming 1 beside 1e-155": ((1.0, 1.0, *STEEL), (-1.000000001, 1e-155, *STEEL), 0.0),
 }
 
@@ -153,6 +155,14 @@ def test_issue_scenes(name):
             hertz.contact(hertz.Body(*b1), hertz.Body(*b2), load=1000.0, angle=angle)
     else:
         assert errors is not None and max(errors.values()) <= 6.5e-16, errors
+
+
+def test_the_issue_saddle_at_angles_from_1e_12_to_1():
+    """The saddle-on-cup reproducer at every decade of angle: refused, the true curvatures
+    named (at 1e-9 .. 1e-7 rad they were -58.09, -54.43, -1.09e-13)."""
+    b1, b2, _ = ISSUE_SCENES["saddle against a concave body at 4.2e-8 rad"]
+    for angle in 10.0 ** np.arange(-12.0, 0.5, 0.5):
+        assert check(b1, b2, angle) is None
 
 
 def test_impossible_contacts_at_angles_down_to_1e_12_are_refused_in_arrays_too():
