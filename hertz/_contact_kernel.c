@@ -24,10 +24,11 @@
  * same bits.  Of the eigenvalues (trace +- d)/2 the one of larger modulus is
  * taken from that sum and the other as rho_x rho_y divided by it: a concave
  * pair (trace < 0) keeps the signs and digits of both, and whether the bodies
- * touch at a point (trace > 0 and rho_x rho_y > 0) follows the true signs.  g1 -+ g2 are taken as differences
- * of the pair sums Cx, Cy or Sx, Sy: for two nearly conforming bodies g1 and
- * -g2 nearly cancel, while the pair sums, each exact, differ by an amount of
- * the order of rho_x + rho_y (the contact is valid only then).
+ * touch at a point (trace > 0 and rho_x rho_y > 0) follows the true signs.
+ * g1 -+ g2 are taken as differences of the pair sums Cx, Cy or Sx, Sy: for
+ * two nearly conforming bodies g1 and -g2 nearly cancel, while the pair sums,
+ * each exact, differ by an amount of the order of rho_x + rho_y (the contact
+ * is valid only then).
  *
  * Contact (Hokada, Iizuka & Takada sec. 2; Johnson sec. 4.2), with
  * lambda = a/b, K, E at m = 1 - 1/lambda^2 and rho = rho_x + rho_y, written
@@ -55,8 +56,9 @@
  * the common case (radii beyond 2^+-240, moduli beyond [2^-900, 2^1000],
  * |angle| > 1e5, no valid contact, a cancelling trace or (1')) are flagged
  * and done by the scalar code (curvatures(): exponent-scaled double-double,
- * the pair sums exact at any exponent), which also names errors; zero, subnormal and bad values and outputs beyond
- * 2^+-1000 make their block take the exact variants of the load stage.  A
+ * the pair sums exact at any exponent), which also names errors; zero,
+ * subnormal and bad values and outputs beyond 2^+-1000 make their block take
+ * the exact variants of the load stage.  A
  * single contact goes through the same block code (n = 1), so it has the same
  * bits as in an array.
  */
@@ -401,7 +403,8 @@ HERTZ_INLINE double
 curvature_determinant(double sx, double sy, double cx, double cy, double gg, double ss,
                       double cc, double *terms)
 {
-    double p = sx * sy, one_sign = p * gg >= 0.0; /* (a product below 2^-1074 counts as 0) */
+    /* (a product p gg below 2^-1074 counts as one sign: the cancels() test remains) */
+    double p = sx * sy, one_sign = p * gg >= 0.0 ? 1.0 : 0.0;
     double u = one_sign != 0.0 ? p : p * cc, v = one_sign != 0.0 ? gg * ss : (cx * cy) * ss;
     *terms = fabs(u) + fabs(v);
     return u + v;
@@ -612,9 +615,9 @@ reduced_modulus(double e1, double nu1, double e2, double nu2, hertz_scaled *e_st
 }
 
 /* The major-axis angle in [-pi/2, pi/2] from g2, Sx - Sy (at one scale) and
- * the angle (0 where they leave it undefined): rho_x lies along atan2(g2 sin 2psi, g1 + g2 cos 2psi)/2, with
- * g1 + g2 cos 2psi = (Sx - Sy) - 2 g2 sin^2 psi; the major axis (along rho_y)
- * is normal to it. */
+ * the angle (0 where they leave it undefined): rho_x lies along
+ * atan2(g2 sin 2psi, g1 + g2 cos 2psi)/2, with g1 + g2 cos 2psi =
+ * (Sx - Sy) - 2 g2 sin^2 psi; the major axis (along rho_y) is normal to it. */
 static double
 axis_angle(double g2, double sxmsy, double ss, double angle)
 {
