@@ -75,6 +75,22 @@ def accuracy() -> dict[str, float]:
     return out
 
 
+def vector_units() -> str:
+    """The vector instructions the contact kernel can pick on this processor (its AVX-512
+    and AVX2 clones differ: gathers on one, loads and shuffles on the other)."""
+    try:
+        with open("/proc/cpuinfo") as f:
+            flags = next((line.split(":", 1)[1].split() for line in f
+                          if line.startswith("flags")), [])
+    except OSError:
+        return "vector units unknown"
+    if "avx512f" in flags:
+        return "AVX-512"
+    if "avx2" in flags:
+        return "AVX2" + ("+FMA" if "fma" in flags else "") + ", no AVX-512"
+    return "no AVX2"
+
+
 def _rounds(contenders: dict, repeats: int, calls: int = 1) -> dict[str, np.ndarray]:
     """CPU seconds per call of each contender, one entry per round, rounds interleaved."""
     times = {k: [] for k in contenders}
@@ -150,7 +166,8 @@ def main():
     args = ap.parse_args()
     if args.speed_only and args.readme:
         ap.error("--readme needs the full tables (drop --speed-only)")
-    lines = [f"{describe()}, {time.strftime('%Y-%m-%d')}; `python benchmarks/solver.py`", ""]
+    lines = [f"{describe()} with {vector_units()}, {time.strftime('%Y-%m-%d')}; "
+             "`python benchmarks/solver.py`", ""]
     if not args.speed_only:
         lines += ["| maximum relative error against mpmath (50 digits) | value |", "|---|---|"]
         lines += [f"| {name} | {value:.2e} |" for name, value in accuracy().items()]
