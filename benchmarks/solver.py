@@ -1,6 +1,6 @@
 """Accuracy and speed of hertz.ellipticity and hertz.contact: the README's solver tables.
 
-    python benchmarks/solver.py [--n 1000000] [--repeats 11] [--no-readme]
+    python benchmarks/solver.py [--n 1000000] [--repeats 11] [--readme]
 
 Accuracy: maximum relative error against the 50-digit mpmath table
 tests/data/reference_lambda.csv (regenerate with tests/make_reference_table.py), of
@@ -12,8 +12,11 @@ round (the machine's speed drifts between rounds); medians over the rounds
 are reported.  Times are the process's CPU time (time.process_time, one
 BLAS thread), so that other work on the machine does not count.  Scalar
 calls are timed the same way against one scalar ellipk(m) + ellipe(m)
-pair.  The tables replace the solver section of README.md unless
---no-readme.
+pair.  Two contact workloads: a ball on a race (a sphere in a groove, the
+bearing case) and two general bodies (both convex with distinct principal
+radii, 1-100 mm log-uniform, steel on aluminium), each at random angles and
+at angle 0.  The tables are printed (with the processor's name); --readme
+also writes them into the solver section of README.md.
 """
 
 from __future__ import annotations
@@ -72,6 +75,22 @@ def accuracy() -> dict[str, float]:
     return out
 
 
+def vector_units() -> str:
+    """The vector instructions the contact kernel can pick on this processor (its AVX-512
+    and AVX2 clones differ: gathers on one, loads and shuffles on the other)."""
+    try:
+        with open("/proc/cpuinfo") as f:
+            flags = next((line.split(":", 1)[1].split() for line in f
+                          if line.startswith("flags")), [])
+    except OSError:
+        return "vector units unknown"
+    if "avx512f" in flags:
+        return "AVX-512"
+    if "avx2" in flags:
+        return "AVX2" + ("+FMA" if "fma" in flags else "") + ", no AVX-512"
+    return "no AVX2"
+
+
 def _rounds(contenders: dict, repeats: int, calls: int = 1) -> dict[str, np.ndarray]:
     """CPU seconds per call of each contender, one entry per round, rounds interleaved."""
     times = {k: [] for k in contenders}
@@ -95,14 +114,23 @@ def speed(n: int, repeats: int) -> dict[str, tuple[float, float]]:
     angles = rng.uniform(-np.pi, np.pi, n)
     balls = hertz.Body.sphere(rng.uniform(2e-3, 2e-2, n), 210e9, 0.3)
     races = hertz.Body(-rng.uniform(2.05e-2, 3e-2, n), rng.uniform(2e-2, 1e-1, n), 70e9, 0.33)
+    # two general bodies: both convex, four distinct radii log-uniform in [1, 100] mm
+    radii = np.exp(rng.uniform(np.log(1e-3), np.log(1e-1), (4, n)))
+    steel = hertz.Body(radii[0], radii[1], 210e9, 0.3)
+    aluminium = hertz.Body(radii[2], radii[3], 70e9, 0.33)
     contenders = {
         "scipy ellipk + ellipe (reference)": lambda: (special.ellipk(m), special.ellipe(m)),
         "hertz.ellipticity": lambda: hertz.ellipticity(alpha),
         "hertz.ellipticity, iterations=0": lambda: hertz.ellipticity(alpha, iterations=0),
         "lambda, m, K, E (solve_ellipse)": lambda: solve_ellipse(alpha),
-        "hertz.contact, N geometries at random angles, two materials, N loads":
+        "hertz.contact, ball on race, N geometries at random angles, two materials, N loads":
             lambda: hertz.contact(balls, races, load=loads, angle=angles),
-        "hertz.contact, the same at angle 0": lambda: hertz.contact(balls, races, load=loads),
+        "hertz.contact, ball on race, the same at angle 0":
+            lambda: hertz.contact(balls, races, load=loads),
+        "hertz.contact, two general convex bodies at random angles, steel on aluminium, "
+        "N loads": lambda: hertz.contact(steel, aluminium, load=loads, angle=angles),
+        "hertz.contact, two general convex bodies, the same at angle 0":
+            lambda: hertz.contact(steel, aluminium, load=loads),
         "hertz.contact, one geometry, N loads": lambda: hertz.contact(ball, race, load=loads),
     }
     times = _rounds(contenders, repeats)
@@ -131,22 +159,33 @@ def main():
     ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
     ap.add_argument("--n", type=int, default=1_000_000)
     ap.add_argument("--repeats", type=int, default=11)
-    ap.add_argument("--no-readme", action="store_true", help="do not update README.md")
+    ap.add_argument("--readme", action="store_true",
+                    help="also write the tables into README.md's solver section")
+    ap.add_argument("--speed-only", action="store_true",
+                    help="only the array timings (no accuracy table, no scalar calls)")
     args = ap.parse_args()
-    lines = [f"{describe()}, {time.strftime('%Y-%m-%d')}; `python benchmarks/solver.py`", "",
-             "| maximum relative error against mpmath (50 digits) | value |", "|---|---|"]
-    lines += [f"| {name} | {value:.2e} |" for name, value in accuracy().items()]
-    lines += ["", f"| N = {args.n:.0e}, alpha log-uniform in [1, 1e6] | ns per element (median) "
+    if args.speed_only and args.readme:
+        ap.error("--readme needs the full tables (drop --speed-only)")
+    lines = [f"{describe()} with {vector_units()}, {time.strftime('%Y-%m-%d')}; "
+             "`python benchmarks/solver.py`", ""]
+    if not args.speed_only:
+        lines += ["| maximum relative error against mpmath (50 digits) | value |", "|---|---|"]
+        lines += [f"| {name} | {value:.2e} |" for name, value in accuracy().items()]
+        lines += [""]
+    lines += [f"| N = {args.n:.0e}, alpha log-uniform in [1, 1e6] | ns per element (median) "
               f"| time / (ellipk + ellipe), median of {args.repeats} rounds |", "|---|---|---|"]
     lines += [f"| {name} | {ns:.1f} | {ratio:.2f} |"
               for name, (ns, ratio) in speed(args.n, args.repeats).items()]
+    if args.speed_only:
+        print("\n".join(lines))
+        return
     lines += ["", "| one call with Python floats | ns per call (median) | time / (scalar "
               f"ellipk + ellipe pair), median of {args.repeats} rounds |", "|---|---|---|"]
     lines += [f"| {name} | {ns:.0f} | {ratio:.2f} |"
               for name, (ns, ratio) in scalar_speed(args.repeats).items()]
     text = "\n".join(lines)
     print(text)
-    if not args.no_readme:
+    if args.readme:
         replace_readme_section("solver-table", text)
 
 

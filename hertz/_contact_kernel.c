@@ -10,6 +10,7 @@
  *     Sx = k1x + k2x,  Sy = k1y + k2y,  g_i = k_ix - k_iy,
  *     rho_x + rho_y = Sx + Sy,
  *     rho_x rho_y   = Sx Sy + g1 g2 sin^2 psi,                          (1)
+ *                   = Sx Sy cos^2 psi + Cx Cy sin^2 psi,                (1')
  *     (rho_x - rho_y)^2 = (g1 - g2)^2 + 4 g1 g2 cos^2 psi
  *                       = (g1 + g2)^2 - 4 g1 g2 sin^2 psi,              (2)
  *     g1 - g2 = Cx - Cy,  g1 + g2 = Sx - Sy,  Cx = k1x + k2y,  Cy = k1y + k2x.
@@ -17,12 +18,17 @@
  * Sx, Sy, g1, g2 are formed times Pi = |r1x r1y r2x r2y| (curvature_products):
  * a pair sum of a concave and a convex radius is (Ra + Rb) times a product of
  * radii, exact however closely the surfaces conform, and one division by Pi
- * replaces eight.  (1) and the form of (2) whose terms have one sign keep
- * every digit, and all three are symmetric in the two bodies, so swapping
- * them (psi -> -psi) gives the same bits.  g1 -+ g2 are taken as differences
- * of the pair sums Cx, Cy or Sx, Sy: for two nearly conforming bodies g1 and
- * -g2 nearly cancel, while the pair sums, each exact, differ by an amount of
- * the order of rho_x + rho_y (the contact is valid only then).
+ * replaces eight.  The form of (1)-(1') and of (2) whose terms have one sign
+ * keeps every digit ((1') for two convex bodies, whatever the angle), and all
+ * are symmetric in the two bodies, so swapping them (psi -> -psi) gives the
+ * same bits.  Of the eigenvalues (trace +- d)/2 the one of larger modulus is
+ * taken from that sum and the other as rho_x rho_y divided by it: a concave
+ * pair (trace < 0) keeps the signs and digits of both, and whether the bodies
+ * touch at a point (trace > 0 and rho_x rho_y > 0) follows the true signs.
+ * g1 -+ g2 are taken as differences of the pair sums Cx, Cy or Sx, Sy: for
+ * two nearly conforming bodies g1 and -g2 nearly cancel, while the pair sums,
+ * each exact, differ by an amount of the order of rho_x + rho_y (the contact
+ * is valid only then).
  *
  * Contact (Hokada, Iizuka & Takada sec. 2; Johnson sec. 4.2), with
  * lambda = a/b, K, E at m = 1 - 1/lambda^2 and rho = rho_x + rho_y, written
@@ -48,9 +54,11 @@
  * vectorises it: geometry (fast_geometry, fast_moduli), the ellipse table,
  * the coefficients, the load-dependent outputs (given_*).  Elements outside
  * the common case (radii beyond 2^+-240, moduli beyond [2^-900, 2^1000],
- * |angle| > 1e5, no valid contact) are flagged and done by the scalar code,
- * which also names errors; zero, subnormal and bad values and outputs beyond
- * 2^+-1000 make their block take the exact variants of the load stage.  A
+ * |angle| > 1e5, no valid contact, a cancelling trace or (1')) are flagged
+ * and done by the scalar code (curvatures(): exponent-scaled double-double,
+ * the pair sums exact at any exponent), which also names errors; zero,
+ * subnormal and bad values and outputs beyond 2^+-1000 make their block take
+ * the exact variants of the load stage.  A
  * single contact goes through the same block code (n = 1), so it has the same
  * bits as in an array.
  */
@@ -381,54 +389,172 @@ curvature_products(double r1x, double r1y, double r2x, double r2y, double *sx, d
     *cy = v[5];
 }
 
-/* curvature_products as double-doubles, v[k] = {hi, lo} in the same order:
- * the sums and products of radii exact, their products to 2^-104.  Symmetric
- * in the bodies as the double version is. */
-static void
-curvature_products_dd(double r1x, double r1y, double r2x, double r2y, double v[6][2])
+/* rho_x rho_y of eq. (1) in the form whose two terms have one sign where
+ * there is one (Sx Sy c^2 + Cx Cy s^2 = Sx Sy + g1 g2 s^2, as g1 g2 =
+ * Cx Cy - Sx Sy):
+ *
+ *     rho_x rho_y = Sx Sy + g1 g2 sin^2 psi            (g1 g2 and Sx Sy of one sign)
+ *                 = Sx Sy cos^2 psi + Cx Cy sin^2 psi  (otherwise),        (1')
+ *
+ * the second a sum of non-negative terms for two convex bodies, and never
+ * more cancelling than the first.  *terms = the sum of the terms' moduli
+ * (for cancels). */
+HERTZ_INLINE double
+curvature_determinant(double sx, double sy, double cx, double cy, double gg, double ss,
+                      double cc, double *terms)
 {
-    double p[6], q[6], a[6], b[6], pabs;
-    double sign = curvature_terms(r1x, r1y, r2x, r2y, p, q, a, b, &pabs);
-    for (int k = 0; k < 6; ++k) {
-        double nl, nh = two_sum(p[k], q[k], &nl), ml, mh = two_prod(a[k], b[k], &ml, 0);
-        v[k][0] = sign * dd_mul(nh, nl, mh, ml, &v[k][1], 0);
-        v[k][1] *= sign;
-    }
+    /* (a product p gg below 2^-1074 counts as one sign: the cancels() test remains) */
+    double p = sx * sy, one_sign = p * gg >= 0.0 ? 1.0 : 0.0;
+    double u = one_sign != 0.0 ? p : p * cc, v = one_sign != 0.0 ? gg * ss : (cx * cy) * ss;
+    *terms = fabs(u) + fabs(v);
+    return u + v;
 }
 
-/* Whether rho_x + rho_y or rho_x rho_y, eq. (1), loses more than one bit to
+/* Whether rho_x + rho_y or rho_x rho_y, eq. (1'), loses more than one bit to
  * cancellation (then the scalar code recomputes them in double-double). */
 static inline int
-cancels(double sx, double sy, double gg, double ss, double trace, double det)
+cancels(double sx, double sy, double trace, double det, double terms)
 {
-    return fabs(trace) < 0.5 * (fabs(sx) + fabs(sy))
-           || fabs(det) < 0.5 * (fabs(sx * sy) + fabs(gg * ss));
+    return fabs(trace) < 0.5 * (fabs(sx) + fabs(sy)) || fabs(det) < 0.5 * terms;
 }
 
-/* 1/ra + 1/rb, a concave-convex pair without cancellation. */
-static inline double
-pair_sum(double ra, double rb)
+/* ------------------------------- exponent-scaled double-double arithmetic */
+
+/* (h + l) 2^e, |h| in [1, 2) (or h = l = e = 0) and |l| <= ulp(h)/2: the
+ * numbers of the scalar geometry, about 2^-104 relative at any exponent, so
+ * that a curvature of a radius of 1e-310 meets one of 1e300 without overflow,
+ * underflow or cancellation. */
+typedef struct {
+    double h, l;
+    int e;
+} xdd;
+
+static const xdd XDD_ZERO = {0.0, 0.0, 0};
+
+static xdd
+xdd_make(double h, double l, int e)
 {
-    if (isfinite(ra) && isfinite(rb) && (ra < 0) != (rb < 0)) {
-        double prod = ra * rb;
-        if (isfinite(prod)) {
-            return (ra + rb) / prod;
-        }
+    double s = h + l;
+    l = l - (s - h);
+    if (s == 0.0) {
+        return XDD_ZERO;
     }
-    return 1.0 / ra + 1.0 / rb;
+    int k = ilogb(s);
+    xdd x = {ldexp(s, -k), ldexp(l, -k), e + k};
+    return x;
 }
 
-/* 1/rx - 1/ry, without cancellation when rx and ry have one sign. */
-static inline double
-pair_difference(double rx, double ry)
+static xdd
+xdd_of(double x) /* x finite */
 {
-    if (isfinite(rx) && isfinite(ry) && (rx < 0) == (ry < 0)) {
-        double prod = rx * ry;
-        if (isfinite(prod)) {
-            return (ry - rx) / prod;
-        }
+    return xdd_make(x, 0.0, 0);
+}
+
+static xdd
+xdd_neg(xdd a)
+{
+    a.h = -a.h;
+    a.l = -a.l;
+    return a;
+}
+
+static xdd
+xdd_mul(xdd a, xdd b)
+{
+    if (a.h == 0.0 || b.h == 0.0) {
+        return XDD_ZERO;
     }
-    return 1.0 / rx - 1.0 / ry;
+    double l, h = dd_mul(a.h, a.l, b.h, b.l, &l, 0);
+    return xdd_make(h, l, a.e + b.e);
+}
+
+/* a + b, either order giving the same bits. */
+static xdd
+xdd_add(xdd a, xdd b)
+{
+    if (a.h == 0.0) {
+        return b;
+    }
+    if (b.h == 0.0) {
+        return a;
+    }
+    if (a.e < b.e) {
+        xdd t = a;
+        a = b;
+        b = t;
+    }
+    int k = b.e - a.e;
+    if (k < -120) { /* b below 2^-118 of a: beyond the precision */
+        return a;
+    }
+    double l, h = dd_add(a.h, a.l, ldexp(b.h, k), ldexp(b.l, k), &l);
+    return xdd_make(h, l, a.e);
+}
+
+static xdd
+xdd_div(xdd a, xdd b) /* b != 0 */
+{
+    if (a.h == 0.0) {
+        return XDD_ZERO;
+    }
+    double q = a.h / b.h, pl, ph = dd_mul(q, 0.0, b.h, b.l, &pl, 0);
+    double rl, rh = dd_add(a.h, a.l, -ph, -pl, &rl);
+    double q2 = (rh + rl) / b.h, s = q + q2;
+    return xdd_make(s, q2 - (s - q), a.e - b.e);
+}
+
+static xdd
+xdd_sqrt(xdd a) /* a >= 0 */
+{
+    if (a.h <= 0.0) {
+        return XDD_ZERO;
+    }
+    double h = a.h, l = a.l;
+    int e = a.e;
+    if (e % 2 != 0) {
+        h *= 2.0;
+        l *= 2.0;
+        e -= 1;
+    }
+    double s = sqrt(h), pl, ph = two_prod(s, s, &pl, 0);
+    double c = (((h - ph) - pl) + l) / (2.0 * s), r = s + c;
+    return xdd_make(r, c - (r - s), e / 2);
+}
+
+static xdd
+xdd_scale2(xdd a, int k)
+{
+    a.e = a.h == 0.0 ? 0 : a.e + k;
+    return a;
+}
+
+/* The rounded mantissa of a at exponent e: (h + l) 2^(a.e - e). */
+static double
+xdd_at(xdd a, int e)
+{
+    return ldexp(a.h + a.l, a.e - e);
+}
+
+/* 1/ra + 1/rb = (ra + rb) / (ra rb) for radii ra, rb (inf counting as a zero
+ * curvature) at any exponents: both are scaled by a common power of two, so
+ * the sum is exact however closely a concave and a convex radius conform and
+ * the product exact however large or small they are.  Symmetric in ra, rb. */
+static xdd
+xdd_pair(double ra, double rb)
+{
+    int fa = isfinite(ra), fb = isfinite(rb);
+    if (!fa || !fb) {
+        return fa || fb ? xdd_div(xdd_of(1.0), xdd_of(fa ? ra : rb)) : XDD_ZERO;
+    }
+    hertz_scaled a = split(fabs(ra)), b = split(fabs(rb));
+    double ma = ra < 0.0 ? -a.m : a.m, mb = rb < 0.0 ? -b.m : b.m;
+    double top = a.e > b.e ? a.e : b.e;
+    /* a part of the smaller radius below 2^-1074 of the larger is lost: it is
+     * below 2^-1000 of the sum */
+    double sl, sh = two_sum(ldexp(ma, (int)(a.e - top)), ldexp(mb, (int)(b.e - top)), &sl);
+    double pl, ph = two_prod(ma, mb, &pl, 0);
+    xdd sum = xdd_make(sh, sl, (int)top), product = xdd_make(ph, pl, (int)(a.e + b.e));
+    return xdd_div(sum, product);
 }
 
 /* The moduli ordered so that E_lo <= E_hi (ties by c = 1 - nu^2), which makes
@@ -488,144 +614,135 @@ reduced_modulus(double e1, double nu1, double e2, double nu2, hertz_scaled *e_st
     return HERTZ_OK;
 }
 
-/* Principal relative curvatures rho_x >= rho_y (as rx 2^e / pabs, ry 2^e /
- * pabs), their sum (rs 2^rse) and the major-axis angle of one geometry, for
- * any input.  HERTZ_OK or an error code; rx, ry are set for the contact
- * errors. */
+/* The major-axis angle in [-pi/2, pi/2] from g2, Sx - Sy (at one scale) and
+ * the angle (0 where they leave it undefined): rho_x lies along
+ * atan2(g2 sin 2psi, g1 + g2 cos 2psi)/2, with g1 + g2 cos 2psi =
+ * (Sx - Sy) - 2 g2 sin^2 psi; the major axis (along rho_y) is normal to it. */
+static double
+axis_angle(double g2, double sxmsy, double ss, double angle)
+{
+    double s = sin(angle), c = cos(angle), y = 2.0 * g2 * s * c, x = sxmsy - 2.0 * g2 * ss;
+    if (y == 0.0 && x == 0.0) { /* a circle */
+        return 0.0;
+    }
+    double th = 0.5 * atan2(y, x) + 0.5 * PI;
+    return th > 0.5 * PI ? th - PI : th;
+}
+
+/* The major-axis angle of an element the block code did (radii within
+ * 2^+-RADIUS_RANGE, |angle| <= FAST_ANGLE), from the same products. */
+static double
+block_axis_angle(const double r[4], double angle)
+{
+    double sx, sy, g1, g2, cx, cy, pabs, ss, cc;
+    curvature_products(r[0], r[1], r[2], r[3], &sx, &sy, &g1, &g2, &cx, &cy, &pabs);
+    sin2_cos2(angle, &ss, &cc);
+    if (ss == 0.0) {
+        return sx > sy ? 0.5 * PI : 0.0;
+    }
+    double big = fmax(fmax(fabs(sx), fabs(sy)), fmax(fabs(g1), fabs(g2)));
+    double f = big > 0.0 ? pow2(-(double)exponent_of(big)) : 1.0;
+    return axis_angle(g2 * f, (sx - sy) * f, ss, angle);
+}
+
+/* Principal relative curvatures rho_x >= rho_y (as rx 2^e and ry 2^e), their
+ * sum (rs 2^rse) and the major-axis angle of one geometry, for any
+ * input: the scalar code, in exponent-scaled double-double (xdd).  The six
+ * pair sums of eq. (1)-(2) are exact at any exponent (xdd_pair), rho_x rho_y
+ * is (1'), and of the two eigenvalues
+ *
+ *     (trace +- d) / 2,  d = |rho_x - rho_y| from (2),
+ *
+ * the one of larger modulus is taken from this sum (no cancellation) and the
+ * other as det divided by it, so that both keep their sign and digits for
+ * concave pairs (trace < 0) as for convex ones.  HERTZ_OK or an error code;
+ * named = {rho_x, rho_y} (the true curvatures, each with its own exponent)
+ * for the contact errors. */
 static int
 curvatures(const double r[4], double angle, double *rx, double *ry, double *rs,
-           double *rse, double *e, double *pabs, double *theta, int with_theta)
+           double *rse, double *e, double *theta, int with_theta, hertz_scaled named[2])
 {
     static const int names[4] = {HERTZ_R1X, HERTZ_R1Y, HERTZ_R2X, HERTZ_R2Y};
-    double radius[4];
-    int lo = INT32_MAX, scale = 0;
     for (int k = 0; k < 4; ++k) {
         if (!(r[k] != 0.0) || isnan(r[k])) {
             return 1 + names[k];
-        }
-        if (isfinite(r[k])) {
-            int ek = exponent_of(r[k]);
-            lo = ek < lo ? ek : lo;
-            scale |= ek < -300 || ek > 300;
         }
     }
     if (!isfinite(angle)) {
         return 1 + HERTZ_ANGLE;
     }
-    /* With a radius beyond 2^+-300, divide all by 2^lo (exactly) first, so
-     * that no curvature overflows; a radius that then overflows is flat to
-     * within 2^-1023 of the others. */
-    int shift = scale ? lo : 0;
-    int products = 1;
-    for (int k = 0; k < 4; ++k) {
-        radius[k] = shift ? scale2(r[k], -shift) : r[k];
-        double a = fabs(radius[k]);
-        products &= a == INFINITY || (a >= 0x1p-240 && a <= 0x1p240);
-    }
-    double sx, sy, g1, g2, cx, cy, sum = 0.0;
-    *pabs = 1.0;
-    if (products) {
-        /* as in fast_geometry: the same bits */
-        curvature_products(radius[0], radius[1], radius[2], radius[3], &sx, &sy, &g1, &g2,
-                           &cx, &cy, pabs);
-        sum = (sx + sy) / *pabs;
-    }
-    else {
-        sx = pair_sum(radius[0], radius[2]);
-        sy = pair_sum(radius[1], radius[3]);
-        g1 = pair_difference(radius[0], radius[1]);
-        g2 = pair_difference(radius[2], radius[3]);
-        cx = pair_sum(radius[0], radius[3]);
-        cy = pair_sum(radius[1], radius[2]);
-    }
-    /* Normalise so that the largest of them lies in [1, 2): products below
-     * cannot overflow, and a subnormal determinant means alpha > 1e307. */
-    double big = fmax(fmax(fabs(sx), fabs(sy)), fmax(fabs(g1), fabs(g2)));
-    int t = big > 0.0 ? exponent_of(big) : 0;
-    double f = pow2(-t < -1022 ? -1022 : (-t > 1023 ? 1023 : -t));
-    sx *= f;
-    sy *= f;
-    g1 *= f;
-    g2 *= f;
-    cx *= f;
-    cy *= f;
-    *e = t - shift; /* true curvature = normalised one * 2^e */
-    double ss, cc;
+    xdd Sx = xdd_pair(r[0], r[2]), Sy = xdd_pair(r[1], r[3]);
+    xdd Cx = xdd_pair(r[0], r[3]), Cy = xdd_pair(r[1], r[2]);
+    xdd G1 = xdd_pair(r[0], -r[1]), G2 = xdd_pair(r[2], -r[3]);
+    xdd SS, CC;
     if (fabs(angle) <= FAST_ANGLE) {
-        sin2_cos2(angle, &ss, &cc); /* as in fast_geometry: the same bits */
+        double s2[2], c2[2];
+        sin2_cos2_dd(angle, s2, c2);
+        SS = xdd_make(s2[0], s2[1], 0);
+        CC = xdd_make(c2[0], c2[1], 0);
     }
     else {
-        double s = sin(angle), c = cos(angle);
-        ss = s * s;
-        cc = c * c;
+        double s = sin(angle), c = cos(angle), l, h = two_prod(s, s, &l, 0);
+        SS = xdd_make(h, l, 0);
+        h = two_prod(c, c, &l, 0);
+        CC = xdd_make(h, l, 0);
     }
-    double rho_x, rho_y, th = 0.0;
-    if (ss == 0.0) {
-        rho_x = fmax(sx, sy);
-        rho_y = fmin(sx, sy);
-        th = sx > sy ? 0.5 * PI : 0.0;
+    xdd trace = xdd_add(Sx, Sy), rho_x, rho_y;
+    if (SS.h == 0.0) {
+        int sx_larger = xdd_add(Sx, xdd_neg(Sy)).h > 0.0;
+        rho_x = sx_larger ? Sx : Sy;
+        rho_y = sx_larger ? Sy : Sx;
     }
     else {
-        double gg = g1 * g2;
-        double trace = sx + sy;
-        double det = sx * sy + gg * ss;                                      /* (1) */
-        double dg = gg >= 0.0 ? cx - cy : sx - sy; /* g1 - g2 or g1 + g2 */
-        if (products && fabs(angle) <= FAST_ANGLE && cancels(sx, sy, gg, ss, trace, det)) {
-            /* the same in double-double from the radii and the angle */
-            double v[6][2], SS[2], CC[2], pl, ph, ql, qh, lo;
-            curvature_products_dd(radius[0], radius[1], radius[2], radius[3], v);
-            for (int k = 0; k < 6; ++k) {
-                v[k][0] *= f;
-                v[k][1] *= f;
-            }
-            const double *Sx = v[0], *Sy = v[1], *G1 = v[2], *G2 = v[3], *Cx = v[4], *Cy = v[5];
-            sin2_cos2_dd(angle, SS, CC);
-            trace = dd_add(Sx[0], Sx[1], Sy[0], Sy[1], &lo);
-            ph = dd_mul(Sx[0], Sx[1], Sy[0], Sy[1], &pl, 0);
-            qh = dd_mul(G1[0], G1[1], G2[0], G2[1], &ql, 0);
-            qh = dd_mul(qh, ql, SS[0], SS[1], &ql, 0);
-            det = dd_add(ph, pl, qh, ql, &lo);
-            dg = gg >= 0.0 ? dd_add(Cx[0], Cx[1], -Cy[0], -Cy[1], &lo)
-                           : dd_add(Sx[0], Sx[1], -Sy[0], -Sy[1], &lo);
-            ss = SS[0];
-            cc = CC[0];
-            sum = trace * pow2(t) / *pabs;
+        xdd gg = xdd_mul(G1, G2), sxy = xdd_mul(Sx, Sy);
+        int one_sign = (sxy.h >= 0.0) == (gg.h >= 0.0);
+        xdd det = one_sign ? xdd_add(sxy, xdd_mul(gg, SS))                       /* (1) */
+                           : xdd_add(xdd_mul(sxy, CC), xdd_mul(xdd_mul(Cx, Cy), SS)); /* (1') */
+        /* (2): the form whose terms have one sign */
+        xdd dg = gg.h >= 0.0 ? xdd_add(Cx, xdd_neg(Cy)) : xdd_add(Sx, xdd_neg(Sy));
+        xdd four_gg = xdd_scale2(gg.h >= 0.0 ? gg : xdd_neg(gg), 2);
+        xdd d = xdd_sqrt(xdd_add(xdd_mul(dg, dg), xdd_mul(four_gg, gg.h >= 0.0 ? CC : SS)));
+        if (trace.h >= 0.0) {
+            rho_x = xdd_scale2(xdd_add(trace, d), -1);
+            rho_y = rho_x.h != 0.0 ? xdd_div(det, rho_x) : XDD_ZERO;
         }
-        double d = sqrt(dg * dg + 4.0 * fabs(gg) * (gg >= 0.0 ? cc : ss));  /* (2) */
-        rho_x = 0.5 * (trace + d);
-        rho_y = d <= 0.5 * trace ? 0.5 * (trace - d) : (rho_x > 0.0 ? det / rho_x : 0.0);
-        rho_y = fmin(rho_y, rho_x);
-        if (rho_x > 0.0 && rho_y > 0.0 && !(det >= DBL_MIN)) {
-            *rx = rho_x;
-            *ry = det > 0.0 ? det / rho_x : rho_y;
-            return HERTZ_LIMIT;
-        }
-        /* rho_x lies along atan2(g2 sin 2psi, g1 + g2 cos 2psi)/2, with
-         * g1 + g2 cos 2psi = (Sx - Sy) - 2 g2 sin^2 psi; the major axis (along
-         * rho_y) is normal to it. */
-        if (with_theta && d != 0.0) {
-            double s = sin(angle), c = cos(angle);
-            th = 0.5 * atan2(2.0 * g2 * s * c, (sx - sy) - 2.0 * g2 * ss) + 0.5 * PI;
-            th = th > 0.5 * PI ? th - PI : th;
+        else {
+            rho_y = xdd_scale2(xdd_add(trace, xdd_neg(d)), -1);
+            rho_x = xdd_div(det, rho_y);
         }
     }
-    *rx = rho_x;
-    *ry = rho_y;
-    if (!(rho_x > 0.0 && rho_y > 0.0)) {
-        if (rho_x > 0.0 && rho_y == 0.0) {
+    /* one exponent for both, that of the larger modulus */
+    *e = rho_x.h == 0.0 || (rho_y.h != 0.0 && rho_y.e > rho_x.e) ? rho_y.e : rho_x.e;
+    *rx = xdd_at(rho_x, (int)*e);
+    *ry = xdd_at(rho_y, (int)*e);
+    named[0].m = xdd_at(rho_x, rho_x.e); /* each at its own exponent, for the errors */
+    named[0].e = rho_x.e;
+    named[1].m = xdd_at(rho_y, rho_y.e);
+    named[1].e = rho_y.e;
+    if (!(rho_y.h > 0.0)) {
+        if (rho_x.h > 0.0 && rho_y.h == 0.0) {
             return HERTZ_LINE;
         }
-        return rho_x == 0.0 && rho_y == 0.0 ? HERTZ_FLAT : HERTZ_CONFORM;
+        return rho_x.h == 0.0 && rho_y.h == 0.0 ? HERTZ_FLAT : HERTZ_CONFORM;
     }
-    if (!(rho_y >= DBL_MIN) || !(rho_x / rho_y <= DBL_MAX)) {
+    if (!(*ry >= DBL_MIN) || !(*rx / *ry <= DBL_MAX)) {
         return HERTZ_LIMIT;
     }
-    *rs = products ? sum : sx + sy;
-    *rse = products ? -shift : t - shift;
-    *theta = th;
+    *rs = xdd_at(trace, trace.e);
+    *rse = trace.e;
+    *theta = 0.0;
+    if (with_theta && SS.h == 0.0) {
+        *theta = xdd_add(Sx, xdd_neg(Sy)).h > 0.0 ? 0.5 * PI : 0.0;
+    }
+    else if (with_theta) {
+        xdd x = xdd_add(xdd_add(Sx, xdd_neg(Sy)), xdd_neg(xdd_scale2(xdd_mul(G2, SS), 1)));
+        int top = x.e > G2.e ? x.e : G2.e;
+        double g2 = xdd_at(G2, top), sxmsy = xdd_at(x, top);
+        /* axis_angle with ss = 0 in place of sin^2: x already holds it */
+        *theta = axis_angle(g2, sxmsy, 0.0, angle);
+    }
     return HERTZ_OK;
 }
-
 /* ------------------------------------------------------ the block stages */
 
 /* What stage 1 leaves per element of a block (structure of arrays): alpha;
@@ -706,18 +823,20 @@ fast_geometry_body(ptrdiff_t n, const double *const in[HERTZ_NGEOMETRY], stage1 
             cy *= f;
             double ss, cc;
             sin2_cos2(angle, &ss, &cc);
-            double gg = g1 * g2;
-            double trace = sx + sy, det = sx * sy + gg * ss;                    /* (1) */
+            double gg = g1 * g2, terms, trace = sx + sy;
+            double det = curvature_determinant(sx, sy, cx, cy, gg, ss, cc, &terms); /* (1') */
             double dg = gg >= 0.0 ? cx - cy : sx - sy; /* g1 - g2 or g1 + g2 */
             double d = sqrt(dg * dg + 4.0 * fabs(gg) * (gg >= 0.0 ? cc : ss));  /* (2) */
+            /* trace > 0 (else no point contact or a cancelling trace: flagged) */
             rx = 0.5 * (trace + d);
             ry = d <= 0.5 * trace ? 0.5 * (trace - d) : det / rx;
             ry = ry < rx ? ry : rx;
             rx = ss == 0.0 ? (sx > sy ? sx : sy) : rx; /* aligned principal planes */
             ry = ss == 0.0 ? (sx > sy ? sy : sx) : ry;
-            bad = ss == 0.0 ? bad : (det >= DBL_MIN ? bad : 1.0);
-            /* (1) or the trace cancelling: the scalar code's double-double */
-            bad = ss == 0.0 ? bad : (cancels(sx, sy, gg, ss, trace, det) ? 1.0 : bad);
+            /* (written as one select: two keep GCC 12 from vectorising the loop) */
+            bad = ss == 0.0 ? bad : (det >= DBL_MIN ? (trace > 0.0 ? bad : 1.0) : 1.0);
+            /* (1') or the trace cancelling: the scalar code's double-double */
+            bad = ss == 0.0 ? bad : (cancels(sx, sy, trace, det, terms) ? 1.0 : bad);
         }
         bad = rx > 0.0 ? bad : 1.0;
         bad = ry >= DBL_MIN ? bad : 1.0;
@@ -804,7 +923,7 @@ fast_geometry_aligned(ptrdiff_t n, const double *const in[HERTZ_NGEOMETRY],
  * *bad the element and its curvatures in *rho_x, *rho_y. */
 static int
 geometry_stage(ptrdiff_t n, const double *const in[HERTZ_NGEOMETRY], stage1 *s,
-               double *theta, ptrdiff_t *bad, double *rho_x, double *rho_y)
+               double *theta, ptrdiff_t *bad, hertz_scaled *rho_x, hertz_scaled *rho_y)
 {
     double turned = 0.0;
     for (ptrdiff_t i = 0; i < n; ++i) {
@@ -823,14 +942,16 @@ geometry_stage(ptrdiff_t n, const double *const in[HERTZ_NGEOMETRY], stage1 *s,
             continue;
         }
         double r[4] = {in[HERTZ_R1X][i], in[HERTZ_R1Y][i], in[HERTZ_R2X][i], in[HERTZ_R2Y][i]};
-        double rx = 0.0, ry = 0.0, rs = 1.0, rse = 0.0, e = 0.0, pabs = 1.0, th = 0.0;
-        int code = curvatures(r, in[HERTZ_ANGLE][i], &rx, &ry, &rs, &rse, &e, &pabs, &th,
-                              theta != NULL);
+        if (s->other[i] == 0.0) { /* only the major-axis angle */
+            theta[i] = block_axis_angle(r, in[HERTZ_ANGLE][i]);
+            continue;
+        }
+        double rx = 0.0, ry = 0.0, rs = 1.0, rse = 0.0, e = 0.0, th = 0.0;
+        hertz_scaled named[2] = {{0.0, 0.0}, {0.0, 0.0}};
+        int code = curvatures(r, in[HERTZ_ANGLE][i], &rx, &ry, &rs, &rse, &e, &th,
+                              theta != NULL, named);
         if (theta) {
             theta[i] = th;
-        }
-        if (s->other[i] == 0.0) {
-            continue;
         }
         hertz_scaled es = {1.0, 0.0};
         if (code == HERTZ_OK) {
@@ -840,11 +961,11 @@ geometry_stage(ptrdiff_t n, const double *const in[HERTZ_NGEOMETRY], stage1 *s,
         s->rx[i] = rx;
         s->ry[i] = ry;
         s->ce[i] = e;
-        s->pabs[i] = pabs;
+        s->pabs[i] = 1.0;
         if (code != HERTZ_OK) {
             *bad = i;
-            *rho_x = scale2(rx, e) / pabs;
-            *rho_y = scale2(ry, e) / pabs;
+            *rho_x = named[0];
+            *rho_y = named[1];
             return code;
         }
         s->alpha[i] = rx / ry;
@@ -1112,7 +1233,8 @@ hertz_given_block(ptrdiff_t n, int mode, const double *const c[HERTZ_NCOEFFICIEN
 static int
 geometry_and_coefficients(ptrdiff_t n, const double *const in[HERTZ_NGEOMETRY],
                           double *const c[HERTZ_NCOEFFICIENTS], double *const g,
-                          int with_theta, ptrdiff_t *bad, double *rho_x, double *rho_y)
+                          int with_theta, ptrdiff_t *bad, hertz_scaled *rho_x,
+                          hertz_scaled *rho_y)
 {
     stage1 s;
     double lam[HERTZ_BLOCK], m[HERTZ_BLOCK], K[HERTZ_BLOCK], E[HERTZ_BLOCK];
@@ -1134,7 +1256,8 @@ geometry_and_coefficients(ptrdiff_t n, const double *const in[HERTZ_NGEOMETRY],
                                          scale2(s.esm[i], s.ese[i]),
                                          scale2(s.rx[i], s.ce[i]) / s.pabs[i],
                                          scale2(s.ry[i], s.ce[i]) / s.pabs[i],
-                                         with_theta ? theta[i] : 0.0};
+                                         /* 0 for every circle */
+                                         with_theta && s.alpha[i] != 1.0 ? theta[i] : 0.0};
             for (int k = 0; k < HERTZ_NFIELDS; ++k) {
                 g[k * n + i] = row[k];
             }
@@ -1146,15 +1269,15 @@ geometry_and_coefficients(ptrdiff_t n, const double *const in[HERTZ_NGEOMETRY],
 int
 hertz_geometry_block(ptrdiff_t n, const double *const in[HERTZ_NGEOMETRY],
                      double *const c[HERTZ_NCOEFFICIENTS], double *fields, ptrdiff_t *bad,
-                     double *rho_x, double *rho_y)
+                     hertz_scaled *rho_x, hertz_scaled *rho_y)
 {
     return geometry_and_coefficients(n, in, c, fields, fields != NULL, bad, rho_x, rho_y);
 }
 
 int
 hertz_contact_block(ptrdiff_t n, const double *const in[HERTZ_NGEOMETRY + 1], int mode,
-                    double *const out[HERTZ_NGIVEN], ptrdiff_t *bad, double *rho_x,
-                    double *rho_y)
+                    double *const out[HERTZ_NGIVEN], ptrdiff_t *bad, hertz_scaled *rho_x,
+                    hertz_scaled *rho_y)
 {
     double cbuf[HERTZ_NCOEFFICIENTS][HERTZ_BLOCK];
     double *c[HERTZ_NCOEFFICIENTS];
@@ -1171,14 +1294,14 @@ hertz_contact_block(ptrdiff_t n, const double *const in[HERTZ_NGEOMETRY + 1], in
 /* Line contact (Johnson sec. 4.3): half_width^2 = 4 P' / (pi E* rho),
  * p0^2 = P' E* rho / pi. */
 int
-hertz_line_contact(const double in[8], double load, double out[5], double *rho_x,
-                   double *rho_y)
+hertz_line_contact(const double in[8], double load, double out[5], hertz_scaled *rho_x,
+                   hertz_scaled *rho_y)
 {
-    double rx = 0.0, ry = 0.0, rs, theta, e = 0.0;
-    double rse, pabs;
-    int code = curvatures(in, 0.0, &rx, &ry, &rs, &rse, &e, &pabs, &theta, 0);
-    *rho_x = scale2(rx, e) / pabs;
-    *rho_y = scale2(ry, e) / pabs;
+    double rx = 0.0, ry = 0.0, rs, rse, theta, e = 0.0;
+    hertz_scaled named[2] = {{0.0, 0.0}, {0.0, 0.0}};
+    int code = curvatures(in, 0.0, &rx, &ry, &rs, &rse, &e, &theta, 0, named);
+    *rho_x = named[0];
+    *rho_y = named[1];
     if (code == HERTZ_LINE) {
         code = HERTZ_OK;
     }
@@ -1196,7 +1319,7 @@ hertz_line_contact(const double in[8], double load, double out[5], double *rho_x
     if (!(load >= 0.0 && load <= DBL_MAX)) {
         return HERTZ_BAD_VALUE;
     }
-    hertz_scaled rho = split(rx / pabs); /* pabs within 2^+-960, rx about 1 */
+    hertz_scaled rho = split(rx); /* rx in [1, 2) */
     rho.e += e;
     out[2] = scale2(es.m, es.e);
     out[3] = scale2(rho.m, rho.e);

@@ -10,6 +10,12 @@
 
 #include "_kernel.h"
 
+/* m * 2^e (e an integer held in a double), so that products and quotients of
+ * extreme magnitudes never overflow or underflow before the final result. */
+typedef struct {
+    double m, e;
+} hertz_scaled;
+
 /* Geometry inputs, in this order. */
 enum {
     HERTZ_R1X, HERTZ_R1Y, HERTZ_R2X, HERTZ_R2Y, HERTZ_ANGLE,
@@ -30,11 +36,6 @@ enum {
     HERTZ_NOT_LINE                        /* line_contact of bodies without a line contact */
 };
 
-/* m * 2^e (e an integer held in a double), so that products and quotients of
- * extreme magnitudes never overflow or underflow before the final result. */
-typedef struct {
-    double m, e;
-} hertz_scaled;
 
 /* Point-contact outputs, in this order: the load-dependent ones
  * (HERTZ_NGIVEN of them), then those of the geometry alone (HERTZ_NFIELDS). */
@@ -56,10 +57,11 @@ enum {
  * coefficients into the arrays c[k] and, unless fields is NULL, the nine
  * geometry fields (lambda, alpha, m, K, E, e_star, rho_x, rho_y, theta) into
  * fields[k * n + i].  HERTZ_OK, or an error code with *bad the first bad
- * element and its relative curvatures in *rho_x, *rho_y. */
+ * element and its relative curvatures in *rho_x, *rho_y (scaled: they may lie
+ * beyond the double range). */
 int hertz_geometry_block(ptrdiff_t n, const double *const in[HERTZ_NGEOMETRY],
                          double *const c[HERTZ_NCOEFFICIENTS], double *fields, ptrdiff_t *bad,
-                         double *rho_x, double *rho_y);
+                         hertz_scaled *rho_x, hertz_scaled *rho_y);
 
 /* The load-dependent outputs {a, b, load, p0, delta, stiffness} of n <=
  * HERTZ_BLOCK elements from their coefficients and the given values (load,
@@ -69,14 +71,14 @@ int hertz_given_block(ptrdiff_t n, int mode, const double *const c[HERTZ_NCOEFFI
 
 /* Both: in[HERTZ_NGEOMETRY] holds the given values. */
 int hertz_contact_block(ptrdiff_t n, const double *const in[HERTZ_NGEOMETRY + 1], int mode,
-                        double *const out[HERTZ_NGIVEN], ptrdiff_t *bad, double *rho_x,
-                        double *rho_y);
+                        double *const out[HERTZ_NGIVEN], ptrdiff_t *bad, hertz_scaled *rho_x,
+                        hertz_scaled *rho_y);
 
 /* Line contact (2-D, plane strain): in = {r1x, r1y, r2x, r2y, E1, nu1, E2,
  * nu2}, the line along y.  out = {half_width, p0, e_star, rho, load}.
  * HERTZ_OK or an error code (1 + k names input k in the point-contact
  * numbering, k != HERTZ_ANGLE). */
-int hertz_line_contact(const double in[8], double load, double out[5], double *rho_x,
-                       double *rho_y);
+int hertz_line_contact(const double in[8], double load, double out[5], hertz_scaled *rho_x,
+                       hertz_scaled *rho_y);
 
 #endif

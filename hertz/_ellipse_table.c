@@ -76,16 +76,36 @@ table_one(double a, double *lam, double *K, double *E)
 #include <immintrin.h>
 #define HAVE_AVX2_TABLE 1
 
-__attribute__((target("avx2"))) static inline __m256d
-poly_avx2(const double *row, __m256i at, __m256d z)
+/* Coefficients j and j + 1 of the rows of four elements as two vectors (lane
+ * k from row k): two 128-bit loads per pair of rows and two unpacks.  This
+ * replaces two gathers, which are slow on AMD Zen (about as slow as the
+ * scalar loads they stand for, and they block the pipes). */
+__attribute__((target("avx2"))) static inline void
+pair_avx2(const double *const row[4], int j, __m256d *cj, __m256d *cj1)
 {
-    __m256d r = _mm256_i64gather_pd(row + 9, at, 8);
-    for (int j = 8; j >= 2; --j) {
-        r = _mm256_add_pd(_mm256_mul_pd(r, z), _mm256_i64gather_pd(row + j, at, 8));
+    __m256d a = _mm256_insertf128_pd(_mm256_castpd128_pd256(_mm_loadu_pd(row[0] + j)),
+                                     _mm_loadu_pd(row[2] + j), 1);
+    __m256d b = _mm256_insertf128_pd(_mm256_castpd128_pd256(_mm_loadu_pd(row[1] + j)),
+                                     _mm_loadu_pd(row[3] + j), 1);
+    *cj = _mm256_unpacklo_pd(a, b);
+    *cj1 = _mm256_unpackhi_pd(a, b);
+}
+
+/* table_poly of four rows (row[k] + offset) at once. */
+__attribute__((target("avx2"))) static inline __m256d
+poly_avx2(const double *const rows[4], int offset, __m256d z)
+{
+    const double *const row[4] = {rows[0] + offset, rows[1] + offset, rows[2] + offset,
+                                  rows[3] + offset};
+    __m256d c[TABLE_STRIDE];
+    for (int j = 0; j < TABLE_STRIDE; j += 2) {
+        pair_avx2(row, j, &c[j], &c[j + 1]);
     }
-    __m256d c1 = _mm256_i64gather_pd(row + 1, at, 8);
-    __m256d c0 = _mm256_i64gather_pd(row, at, 8);
-    return _mm256_add_pd(c0, _mm256_add_pd(c1, _mm256_mul_pd(z, r)));
+    __m256d r = c[9];
+    for (int j = 8; j >= 2; --j) {
+        r = _mm256_add_pd(_mm256_mul_pd(r, z), c[j]);
+    }
+    return _mm256_add_pd(c[0], _mm256_add_pd(c[1], _mm256_mul_pd(z, r)));
 }
 
 /* table_one four at a time, the same operations in the same order (no FMA),
@@ -121,9 +141,13 @@ table_avx2(ptrdiff_t n, const double *alpha, double *lam, double *K, double *E)
                                   _mm256_add_pd(_mm256_add_pd(scale, _mm256_mul_pd(two, k)),
                                                 one));
         __m256i at = _mm256_sub_epi64(_mm256_slli_epi64(piece, 5), _mm256_slli_epi64(piece, 1));
-        __m256d l = poly_avx2(table, at, z);
-        __m256d kk = poly_avx2(table + TABLE_STRIDE, at, z);
-        __m256d ee = poly_avx2(table + 2 * TABLE_STRIDE, at, z);
+        long long offset[4];
+        _mm256_storeu_si256((__m256i *)offset, at);
+        const double *const rows[4] = {table + offset[0], table + offset[1], table + offset[2],
+                                       table + offset[3]};
+        __m256d l = poly_avx2(rows, 0, z);
+        __m256d kk = poly_avx2(rows, TABLE_STRIDE, z);
+        __m256d ee = poly_avx2(rows, 2 * TABLE_STRIDE, z);
         __m256d is_one = _mm256_cmp_pd(a, one, _CMP_EQ_OQ);
         l = _mm256_blendv_pd(one, l, _mm256_cmp_pd(l, one, _CMP_GT_OQ));
         _mm256_storeu_pd(lam + i, _mm256_blendv_pd(l, one, is_one));

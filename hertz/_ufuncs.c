@@ -18,6 +18,9 @@
 #define PY_SSIZE_T_CLEAN
 #include <Python.h>
 #include <structmember.h>
+#include <float.h>
+#include <math.h>
+#include <stdio.h>
 #include <string.h>
 
 #define NPY_NO_DEPRECATED_API NPY_2_0_API_VERSION
@@ -53,12 +56,44 @@ short_text(double x)
     return PyOS_double_to_string(x, 'g', 6, 0, NULL);
 }
 
+/* m 2^e to 6 significant digits, also beyond the double range (a curvature
+ * of 2e+323 1/m); PyMem-allocated. */
+static char *
+scaled_text(hertz_scaled x)
+{
+    int e = x.e > 4000.0 ? 4000 : (x.e < -4000.0 ? -4000 : (int)x.e);
+    double v = ldexp(x.m, e);
+    if (x.m == 0.0 || !isfinite(x.m) || (isfinite(v) && fabs(v) >= DBL_MIN)) {
+        return short_text(v);
+    }
+    double l = log10(fabs(x.m)) + e * log10(2.0), p = floor(l);
+    char *digits = short_text(copysign(pow(10.0, l - p), x.m));
+    if (!digits) {
+        return NULL;
+    }
+    if (strncmp(digits + (x.m < 0.0), "10", 2) == 0) { /* 9.9999996 rounded up */
+        PyMem_Free(digits);
+        digits = short_text(copysign(1.0, x.m));
+        p += 1.0;
+        if (!digits) {
+            return NULL;
+        }
+    }
+    char *text = PyMem_Malloc(strlen(digits) + 16);
+    if (text) {
+        sprintf(text, "%se%+d", digits, (int)p);
+    }
+    PyMem_Free(digits);
+    return text;
+}
+
 /* Set the ValueError of error code `code` for one element: `in` holds its
  * geometry inputs (point-contact numbering), `value` its load, approach or
  * p0 (`what` indexes value_names), rho_x and rho_y its relative curvatures.
  * Must hold the GIL. */
 static void
-set_error(int code, const double *in, double value, int what, double rho_x, double rho_y)
+set_error(int code, const double *in, double value, int what, hertz_scaled rho_x,
+          hertz_scaled rho_y)
 {
     char *v = NULL, *w = NULL;
     if (code >= 1 && code <= HERTZ_NGEOMETRY) {
@@ -88,7 +123,7 @@ set_error(int code, const double *in, double value, int what, double rho_x, doub
                      value_names[what], value_units[what], v);
     }
     else if (code == HERTZ_LINE) {
-        v = short_text(rho_x);
+        v = scaled_text(rho_x);
         PyErr_Format(PyExc_ValueError,
                      "the bodies make a line contact (relative curvature %s 1/m across, 0 "
                      "along the line: parallel cylinders or a cylinder on a plane); use "
@@ -100,16 +135,16 @@ set_error(int code, const double *in, double value, int what, double rho_x, doub
                         "direction (plane on plane, or surfaces that fit each other exactly)");
     }
     else if (code == HERTZ_CONFORM) {
-        v = short_text(rho_x);
-        w = short_text(rho_y);
+        v = scaled_text(rho_x);
+        w = scaled_text(rho_y);
         PyErr_Format(PyExc_ValueError,
                      "no Hertz point contact: principal relative curvatures %s and %s 1/m "
                      "must both be positive; a concave surface that conforms more closely "
                      "than the convex one touches it away from a single point", v, w);
     }
     else if (code == HERTZ_LIMIT) {
-        v = short_text(rho_x);
-        w = short_text(rho_y);
+        v = scaled_text(rho_x);
+        w = scaled_text(rho_y);
         PyErr_Format(PyExc_ValueError,
                      "the bodies are within rounding of a line contact: the principal "
                      "relative curvatures %s and %s 1/m have a ratio rho_x / rho_y beyond "
@@ -117,8 +152,8 @@ set_error(int code, const double *in, double value, int what, double rho_x, doub
                      "(hertz.line_contact)", v, w);
     }
     else if (code == HERTZ_NOT_LINE) {
-        v = short_text(rho_x);
-        w = short_text(rho_y);
+        v = scaled_text(rho_x);
+        w = scaled_text(rho_y);
         PyErr_Format(PyExc_ValueError,
                      "not a line contact: the principal relative curvatures are %s and %s "
                      "1/m; a line contact needs one of them 0 and the other positive (use "
@@ -132,8 +167,8 @@ set_error(int code, const double *in, double value, int what, double rho_x, doub
 }
 
 static void
-set_error_nogil(int code, const double *in, double value, int what, double rho_x,
-                double rho_y)
+set_error_nogil(int code, const double *in, double value, int what, hertz_scaled rho_x,
+                hertz_scaled rho_y)
 {
     PyGILState_STATE state = PyGILState_Ensure();
     set_error(code, in, value, what, rho_x, rho_y);
@@ -181,7 +216,7 @@ ellipse_block(ptrdiff_t n, const double *const *in, double *const *out, int iter
 
 static int
 geometry_error(int code, ptrdiff_t bad, const double *const *in, double value, int what,
-               double rho_x, double rho_y)
+               hertz_scaled rho_x, hertz_scaled rho_y)
 {
     double row[HERTZ_NGEOMETRY];
     for (int k = 0; k < HERTZ_NGEOMETRY; ++k) {
@@ -196,7 +231,7 @@ static int
 contact_block(ptrdiff_t n, const double *const *in, double *const *out, int mode)
 {
     ptrdiff_t bad = 0;
-    double rho_x = 0.0, rho_y = 0.0;
+    hertz_scaled rho_x = {0.0, 0.0}, rho_y = {0.0, 0.0};
     int code = hertz_contact_block(n, in, mode, out, &bad, &rho_x, &rho_y);
     if (code != HERTZ_OK) {
         return geometry_error(code, bad, in, in[HERTZ_NGEOMETRY][bad], mode, rho_x, rho_y);
@@ -218,7 +253,7 @@ geometry_block(ptrdiff_t n, const double *const *in, double *const *out, int coe
         c[k] = coefficients && k > 0 ? out[HERTZ_NFIELDS + k - 1] : cbuf[k];
     }
     ptrdiff_t bad = 0;
-    double rho_x = 0.0, rho_y = 0.0;
+    hertz_scaled rho_x = {0.0, 0.0}, rho_y = {0.0, 0.0};
     int code = hertz_geometry_block(n, in, c, fields, &bad, &rho_x, &rho_y);
     if (code != HERTZ_OK) {
         return geometry_error(code, bad, in, 0.0, 0, rho_x, rho_y);
@@ -236,7 +271,8 @@ given_block(ptrdiff_t n, const double *const *in, double *const *out, int mode)
 {
     ptrdiff_t bad = 0;
     if (hertz_given_block(n, mode, in, in[HERTZ_NCOEFFICIENTS], out, &bad) != HERTZ_OK) {
-        set_error_nogil(HERTZ_BAD_VALUE, NULL, in[HERTZ_NCOEFFICIENTS][bad], mode, 0.0, 0.0);
+        hertz_scaled zero = {0.0, 0.0};
+        set_error_nogil(HERTZ_BAD_VALUE, NULL, in[HERTZ_NCOEFFICIENTS][bad], mode, zero, zero);
         return -1;
     }
     return 0;
@@ -246,7 +282,7 @@ given_block(ptrdiff_t n, const double *const *in, double *const *out, int mode)
  * out = the HERTZ_NOUT fields. */
 static int
 contact_one(const double in[HERTZ_NGEOMETRY + 1], int mode, int with_fields,
-            double out[HERTZ_NOUT], double *rho_x, double *rho_y)
+            double out[HERTZ_NOUT], hertz_scaled *rho_x, hertz_scaled *rho_y)
 {
     const double *ptr[HERTZ_NGEOMETRY + 1];
     for (int k = 0; k <= HERTZ_NGEOMETRY; ++k) {
@@ -275,7 +311,8 @@ static int
 contact_status_block(ptrdiff_t n, const double *const *in, double *const *out, int mode)
 {
     for (ptrdiff_t i = 0; i < n; ++i) {
-        double row[HERTZ_NGEOMETRY + 1], fields[HERTZ_NOUT], rho_x, rho_y;
+        double row[HERTZ_NGEOMETRY + 1], fields[HERTZ_NOUT];
+        hertz_scaled rho_x, rho_y;
         for (int k = 0; k <= HERTZ_NGEOMETRY; ++k) {
             row[k] = in[k][i];
         }
@@ -290,7 +327,8 @@ static int
 line_block(ptrdiff_t n, const double *const *in, double *const *out, int status_only)
 {
     for (ptrdiff_t i = 0; i < n; ++i) {
-        double row[8], res[5], rho_x, rho_y;
+        double row[8], res[5];
+        hertz_scaled rho_x, rho_y;
         for (int k = 0; k < 8; ++k) {
             row[k] = in[k][i];
         }
@@ -682,7 +720,8 @@ contact_scalar(PyObject *self, PyObject *const *args, Py_ssize_t nargs)
         PyErr_SetString(PyExc_ValueError, "contact: mode must be 0, 1 or 2");
         return NULL;
     }
-    double fields[HERTZ_NOUT], rho_x = 0.0, rho_y = 0.0;
+    double fields[HERTZ_NOUT];
+    hertz_scaled rho_x = {0.0, 0.0}, rho_y = {0.0, 0.0};
     int code = contact_one(x + 1, mode, 1, fields, &rho_x, &rho_y);
     if (code != HERTZ_OK) {
         set_error(code, x + 1, x[10], mode, rho_x, rho_y);
@@ -701,7 +740,8 @@ static PyObject *
 line_scalar(PyObject *self, PyObject *const *args, Py_ssize_t nargs)
 {
     (void)self;
-    double x[9], res[5], rho_x, rho_y;
+    double x[9], res[5];
+    hertz_scaled rho_x, rho_y;
     if (floats(args, nargs, 9, x, "line_contact") < 0) {
         return NULL;
     }

@@ -75,11 +75,15 @@ def ellipse_ref(alpha) -> tuple[mp.mpf, mp.mpf, mp.mpf, mp.mpf]:
 def curvatures_ref(r1x, r1y, r2x, r2y, angle):
     """Eigenvalues (rho_x >= rho_y) of the gap's curvature tensor, exact inputs.
 
-    Evaluated at 800 digits, so that a nearly singular tensor (crossed
-    cylinders at an angle of 1e-150, conforming radii equal to 1e-16)
-    keeps 50 correct digits in rho_y = det / rho_x.
+    Evaluated at 800 digits or more, so that a nearly singular tensor (crossed
+    cylinders at an angle of 1e-150, conforming radii equal to 1e-16, radii of
+    1e-300 beside 1e300) keeps 50 correct digits in rho_y = det / rho_x: the
+    digits grow with the decimal spread of the radii and with a small angle.
     """
-    with mp.workdps(800):
+    finite = [abs(r) for r in (r1x, r1y, r2x, r2y) if not math.isinf(r)]
+    spread = math.log10(max(finite)) - math.log10(min(finite)) if finite else 0.0
+    small = -math.log10(abs(angle)) if 0 < abs(angle) < 1 else 0.0
+    with mp.workdps(max(800, int(200 + 3 * spread + 4 * small))):
         c, s = mp.cos(mp.mpf(angle)), mp.sin(mp.mpf(angle))
         k = [0 if math.isinf(r) else 1 / mp.mpf(r) for r in (r1x, r1y, r2x, r2y)]
         a = k[0] + k[2] * c * c + k[3] * s * s
