@@ -48,7 +48,7 @@ def maxima_table(c) -> list[str]:
     rows = [("largest shear stress tau1 = (s1 - s3)/2", m.tau_max,
              f"z = {m.z_tau_max * 1e6:.2f} um"),
             ("largest von Mises stress", m.von_mises, f"z = {m.z_von_mises * 1e6:.2f} um"),
-            ("largest orthogonal shear |tau_yz| (x = 0)", m.tau_orthogonal,
+            ("largest orthogonal shear \\|tau_yz\\| (x = 0)", m.tau_orthogonal,
              f"y = {m.y_tau_orthogonal * 1e6:.2f} um, z = {m.z_tau_orthogonal * 1e6:.2f} um"),
             ("largest surface tension (edge of the ellipse)", m.tensile,
              f"x = {m.x_tensile * 1e6:.1f} um, y = {m.y_tensile * 1e6:.1f} um")]
