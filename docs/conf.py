@@ -28,10 +28,11 @@ from pathlib import Path
 
 DOCS = Path(__file__).resolve().parent
 ROOT = DOCS.parent
-if str(ROOT) not in sys.path:  # the checkout's package when it is not installed
+try:
+    import hertz
+except ImportError:  # not installed: the checkout's, built in place (setup.py build_ext -i)
     sys.path.insert(0, str(ROOT))
-
-import hertz  # noqa: E402
+    import hertz
 
 project = "hertz"
 author = "the hertz developers"
