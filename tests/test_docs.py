@@ -18,6 +18,7 @@ here, by its fence's language:
 from __future__ import annotations
 
 import doctest
+import importlib
 import importlib.util
 import os
 import re
@@ -234,3 +235,19 @@ def test_inventories_are_the_scripts_output_and_cover_the_references():
             target = m["target"]
             if target.split(".")[0] in ("numpy", "scipy", "dask", "meshio"):
                 assert target in known, f"{page_id(path)}: {target} is not in the inventories"
+
+
+# --- the API reference lists every public name ------------------------------------------
+
+
+@pytest.mark.parametrize("module", ["hertz", "hertz.methods", "fem_validation"])
+def test_the_api_reference_lists_every_public_name(module):
+    if module == "fem_validation":
+        pytest.importorskip("skfem", reason="fem_validation needs the fem extra")
+    names = importlib.import_module(module).__all__
+    text = (DOCS / "api" / "index.md").read_text()
+    listed = set(re.findall(r"^   ([\w.]+)$", text, re.M))
+    listed |= {m.rsplit(".", 1)[-1] for m in re.findall(r"^\.\. autodata:: ([\w.]+)$", text,
+                                                       re.M)}
+    missing = sorted(set(names) - {n.rsplit(".", 1)[-1] for n in listed})
+    assert missing == [], f"add {missing} of {module}.__all__ to docs/api/index.md"
