@@ -51,7 +51,7 @@ extensions = [
 
 source_suffix = {".rst": "restructuredtext", ".md": "myst-nb"}  # rst first: autosummary writes .rst
 exclude_patterns = ["_build", "_inventories", "**.ipynb_checkpoints", "fem/*.md",
-                    "speed_vs_error.md"]
+                    "speed_vs_error.md", "api/public_names.rst"]
 root_doc = "index"
 
 # MyST
@@ -65,14 +65,82 @@ nb_execution_timeout = 60
 nb_execution_show_tb = True
 nb_merge_streams = True
 
-# autodoc / autosummary / numpydoc
-autosummary_generate = True
+# autodoc / autosummary / numpydoc. The API reference lists every name of each module's
+# __all__: write_api_names() writes api/public_names.rst (not committed, included by
+# api/index.md) from them before the build, so a new public name is documented without
+# touching the pages; autosummary writes a stub page for each (api/generated/).
+API_MODULES = ("hertz", "hertz.methods", "fem_validation")
+RESULT_TYPES = ("hertz._stress.Subsurface", "hertz._stress.LineSubsurface")
 autosummary_imported_members = True
 autodoc_typehints = "none"
 autodoc_default_options = {"members": True, "inherited-members": False}
 numpydoc_show_class_members = False
 numpydoc_class_members_toctree = False
 numpydoc_xref_param_type = False
+
+
+
+def _data_doc(module_name: str, name: str) -> str:
+    """The ``#:`` comment of a module constant, from the module that defines it."""
+    from sphinx.pycode import ModuleAnalyzer
+
+    prefix = module_name.split(".")[0]
+    for mod_name in sorted(m for m in sys.modules if m == prefix or m.startswith(prefix + ".")):
+        mod = sys.modules[mod_name]
+        if getattr(mod, name, None) is not getattr(sys.modules[module_name], name):
+            continue
+        try:
+            docs = ModuleAnalyzer.for_module(mod_name).find_attr_docs()
+        except Exception:  # noqa: BLE001  (a module without source: no comment)
+            continue
+        if ("", name) in docs:
+            text = " ".join(line.strip() for line in docs[("", name)] if line.strip())
+            return _ABSOLUTE.sub(r"\\|\1\\|", text)
+    return ""
+
+
+def api_names_rst() -> str:
+    """reStructuredText of the API reference's lists: one section per module of
+    API_MODULES, classes and functions in an autosummary table, constants as py:data."""
+    import importlib
+    import inspect
+
+    out = []
+    for module_name in API_MODULES:
+        module = importlib.import_module(module_name)
+        names = list(module.__all__)
+        code = [n for n in names if inspect.isclass(getattr(module, n))
+                or callable(getattr(module, n))]
+        data = [n for n in names if n not in code]
+        title = f"``{module_name}``"
+        out += [title, "-" * len(title), "", f".. automodule:: {module_name}", "   :no-members:",
+                "   :no-index:", "", f".. currentmodule:: {module_name}", "",
+                ".. autosummary::", "   :toctree: generated", "   :nosignatures:", "",
+                *(f"   {n}" for n in sorted(code, key=lambda n: (not n[0].isupper(), n))), ""]
+        if module_name == "hertz":
+            out += ["Returned by ``Contact.subsurface`` and ``LineContact.subsurface``:", "",
+                    f".. currentmodule:: {RESULT_TYPES[0].rsplit('.', 1)[0]}", "",
+                    ".. autosummary::", "   :toctree: generated", "   :nosignatures:", "",
+                    *(f"   {n.rsplit('.', 1)[1]}" for n in RESULT_TYPES), ""]
+        if data:
+            out += ["Constants:", ""]
+        for n in data:
+            value = repr(getattr(module, n))
+            out += [f".. py:data:: {module_name}.{n}"]
+            if len(value) <= 120:
+                out += [f"   :value: {value}"]
+            out += ["", f"   {_data_doc(module_name, n) or 'See the module.'}", ""]
+    return "\n".join(out) + "\n"
+
+
+def write_api_names() -> None:
+    path = DOCS / "api" / "public_names.rst"
+    text = api_names_rst()
+    if not path.exists() or path.read_text() != text:
+        path.write_text(text)
+
+
+autosummary_generate = ["api/public_names.rst"]  # written by write_api_names() below
 
 # intersphinx from local inventories (see the module docstring).
 _INV = DOCS / "_inventories"
@@ -124,3 +192,6 @@ def _drop_missing_calculix(app, docname, source):
 def setup(app):
     app.connect("autodoc-process-docstring", _escape_plain_math)
     app.connect("source-read", _drop_missing_calculix)
+
+
+write_api_names()
