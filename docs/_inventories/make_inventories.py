@@ -40,8 +40,8 @@ OBJECTS: dict[str, list[tuple[str, str, str, str]]] = {
         ("numpy.meshgrid", "py:function", _generated("numpy.meshgrid"), "-"),
         ("numpy.random.Generator", "py:class",
          "reference/random/generator.html#numpy.random.Generator", "-"),
-        ("basics.broadcasting", "std:doc", "user/basics.broadcasting.html", "Broadcasting"),
-        ("ufuncs", "std:doc", "reference/ufuncs.html", "Universal functions (ufunc)"),
+        ("user/basics.broadcasting", "std:doc", "user/basics.broadcasting.html", "Broadcasting"),
+        ("reference/ufuncs", "std:doc", "reference/ufuncs.html", "Universal functions (ufunc)"),
     ],
     "scipy": [
         ("scipy.special.ellipk", "py:data", _generated("scipy.special.ellipk"), "-"),
