@@ -159,8 +159,8 @@ intersphinx_timeout = 1
 # its toctree entry is dropped (_drop_missing_calculix) and the tutorial's link to it is
 # left out (an ``only:: calculix`` block).
 HAVE_CALCULIX = (DOCS / "howto" / "calculix.md").exists()
-if HAVE_CALCULIX:
-    tags.add("calculix")  # noqa: F821  (Sphinx injects ``tags`` into conf.py)
+if HAVE_CALCULIX and "tags" in globals():  # Sphinx injects ``tags``; a test imports this file
+    tags.add("calculix")  # noqa: F821
 
 html_theme = "furo"
 html_title = f"hertz {release}"
