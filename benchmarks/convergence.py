@@ -1,6 +1,6 @@
 """The seed's Fig. 4 redone: convergence of the Bailey iteration against alpha.
 
-    python benchmarks/convergence.py [--out docs]
+    python benchmarks/convergence.py [--out DIR] [--readme]
 
 Left panel, as the paper plots it: |nu_n / nu_inf - 1| for n = 0, 1, 2 over
 1e-3 <= alpha <= 1e6, with the trial function as printed (c3 = +0.109...)
@@ -10,7 +10,8 @@ Right panel: the same iterates measured as the relative error in lambda,
 the quantity users see, with ours (iterations = 0 and 1) beside them.
 Errors below 1e-17 are drawn at 1e-17; the printed method gives NaN for
 alpha < 1 (the trial function takes (ln alpha)^(1/2)) and above alpha ~ 100.
-Writes OUT/convergence.png.
+Writes OUT/convergence.png (OUT defaults to the current folder; --readme
+writes docs/convergence.png, the figure of docs/explanation/solver.md).
 """
 
 from __future__ import annotations
@@ -47,8 +48,13 @@ def rel(values, refs):
 
 def main():
     ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
-    ap.add_argument("--out", type=Path, default=ROOT / "docs")
+    ap.add_argument("--out", type=Path, default=Path("."),
+                    help="folder for convergence.png (default: here)")
+    ap.add_argument("--readme", action="store_true",
+                    help="write docs/convergence.png, the documentation's figure")
     args = ap.parse_args()
+    if args.readme:
+        args.out = ROOT / "docs"
     args.out.mkdir(parents=True, exist_ok=True)
 
     rows = sorted((r for r in load_table()

@@ -1,6 +1,6 @@
 """Speed against error of every method for lambda(alpha), measured in one run.
 
-    python benchmarks/speed_vs_error.py [--out docs] [--rounds 7] [--no-readme]
+    python benchmarks/speed_vs_error.py [--out DIR] [--rounds 7] [--readme]
 
 Error: relative error in lambda and in the contact outputs a, b, p0, delta
 against the committed 50-digit table tests/data/reference_lambda.csv, on
@@ -14,10 +14,12 @@ fewer for the slow iterative methods: the table says), median of --rounds
 rounds with all methods interleaved in each round, single-threaded; and
 microseconds for one call with a Python float.
 
-Writes OUT/speed_vs_error.json (raw numbers), OUT/speed_vs_error.md (the
-table and the conclusions) and OUT/speed_vs_error.png (error against time,
-log-log; needs matplotlib, the ``plot`` extra), and replaces the section
-between the speed-vs-error markers of README.md.
+Prints the table and writes OUT/speed_vs_error.json (raw numbers),
+OUT/speed_vs_error.md (the table and the conclusions) and
+OUT/speed_vs_error.png (error against time, log-log; needs matplotlib, the
+``plot`` extra); OUT defaults to the current folder.  With --readme, OUT is
+docs/ and the table also replaces the speed-vs-error section of the
+documentation (docs/explanation/speed-vs-error.md).
 """
 
 from __future__ import annotations
@@ -311,10 +313,14 @@ def plot(ms: list[Method], path: Path) -> None:
 
 def main():
     ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
-    ap.add_argument("--out", type=Path, default=ROOT / "docs")
+    ap.add_argument("--out", type=Path, default=None,
+                    help="folder for the .json, .md and .png (default: here; docs/ with --readme)")
     ap.add_argument("--rounds", type=int, default=7)
-    ap.add_argument("--no-readme", action="store_true", help="do not update README.md")
+    ap.add_argument("--readme", action="store_true",
+                    help="write into docs/ and the documentation's speed-vs-error section")
     args = ap.parse_args()
+    if args.out is None:
+        args.out = ROOT / "docs" if args.readme else Path(".")
     args.out.mkdir(parents=True, exist_ok=True)
     t_start = time.time()
     ms = build_methods()
@@ -333,9 +339,9 @@ def main():
         plot(ms, args.out / "speed_vs_error.png")
     except ImportError:
         print("matplotlib missing (pip install '.[plot]'): no PNG written", file=sys.stderr)
-    if not args.no_readme:
-        replace_readme_section("speed-vs-error", md)
     print(md)
+    if args.readme:
+        print(f"wrote {replace_readme_section('speed-vs-error', md)}")
     print(f"\n({time.time() - t_start:.0f} s)")
 
 

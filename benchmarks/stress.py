@@ -1,15 +1,16 @@
 """Stresses below the default scene, and the speed of the stress field and its maxima.
 
-    python benchmarks/stress.py [--n 1000000] [--contacts 100000] [--repeats 7] [--no-readme]
-                                [--baseline PATH]
+    python benchmarks/stress.py [--n 1000000] [--contacts 100000] [--repeats 7] [--readme]
+                                [--out DIR] [--baseline PATH]
 
-Writes the table of subsurface maxima of the ``hertz`` command's default
-scene (a bearing ball on its inner race) and docs/stress.png (the figure of
-``hertz --plot``), and times Contact.stress at N points and
+Prints the table of subsurface maxima of the ``hertz`` command's default
+scene (a bearing ball on its inner race), writes OUT/stress.png (the figure
+of ``hertz --plot``; OUT defaults to the current folder), and times Contact.stress at N points and
 Contact.subsurface for N contacts against one scipy.special.ellipk + ellipe
 pass over N (CPU time, interleaved rounds, medians of the per-round
-ratios).  The tables replace the stress section of README.md unless
---no-readme.  --baseline PATH (another build's hertz/_ufuncs*.so, or the
+ratios).  With --readme the tables also replace the stress-table section
+of the documentation (docs/explanation/stresses.md) and the figure goes to
+docs/stress.png.  --baseline PATH (another build's hertz/_ufuncs*.so, or the
 checkout that holds it) adds, in the same interleaved rounds, the bare
 subsurface ufunc of that build and of this one on the same contacts, for a
 before/after comparison on a busy machine.
@@ -48,7 +49,7 @@ def maxima_table(c) -> list[str]:
     rows = [("largest shear stress tau1 = (s1 - s3)/2", m.tau_max,
              f"z = {m.z_tau_max * 1e6:.2f} um"),
             ("largest von Mises stress", m.von_mises, f"z = {m.z_von_mises * 1e6:.2f} um"),
-            ("largest orthogonal shear |tau_yz| (x = 0)", m.tau_orthogonal,
+            ("largest orthogonal shear \\|tau_yz\\| (x = 0)", m.tau_orthogonal,
              f"y = {m.y_tau_orthogonal * 1e6:.2f} um, z = {m.z_tau_orthogonal * 1e6:.2f} um"),
             ("largest surface tension (edge of the ellipse)", m.tensile,
              f"x = {m.x_tensile * 1e6:.1f} um, y = {m.y_tensile * 1e6:.1f} um")]
@@ -132,26 +133,32 @@ def main():
     ap.add_argument("--n", type=int, default=1_000_000)
     ap.add_argument("--contacts", type=int, default=100_000)
     ap.add_argument("--repeats", type=int, default=7)
-    ap.add_argument("--no-readme", action="store_true", help="do not update README.md")
+    ap.add_argument("--readme", action="store_true",
+                    help="also write the tables into the documentation's stress-table section "
+                         "and the figure to docs/stress.png")
+    ap.add_argument("--out", type=Path, default=Path("."),
+                    help="folder for stress.png without --readme (default: here)")
     ap.add_argument("--baseline", metavar="PATH",
                     help="also time the subsurface ufunc of another build (its _ufuncs .so "
                          "or its checkout), interleaved with this one's")
     args = ap.parse_args()
-    if args.baseline and not args.no_readme:
-        ap.error("--baseline is for comparisons: add --no-readme")
+    if args.baseline and args.readme:
+        ap.error("--baseline is for comparisons: drop --readme")
     baseline = load_baseline(args.baseline) if args.baseline else None
     c = default_contact()
     from hertz._plot import stress_figure
 
-    DOCS.mkdir(exist_ok=True)
+    out = DOCS if args.readme else args.out
+    out.mkdir(parents=True, exist_ok=True)
     stress_figure(c, title="bearing ball on inner race (default scene)").savefig(
-        DOCS / "stress.png", dpi=110)
+        out / "stress.png", dpi=110)
     lines = [f"{describe()}, {time.strftime('%Y-%m-%d')}; `python benchmarks/stress.py`", "",
              *maxima_table(c), "", *speed(args.n, args.contacts, args.repeats, baseline)]
     text = "\n".join(lines)
     print(text)
-    if not args.no_readme:
-        replace_readme_section("stress-table", text)
+    print(f"wrote {out / 'stress.png'}")
+    if args.readme:
+        print(f"wrote {replace_readme_section('stress-table', text)}")
 
 
 if __name__ == "__main__":
