@@ -240,7 +240,8 @@ class Contact:
     stiffness: float | np.ndarray
     #: the nine geometry fields, or the _Deferred inputs to compute them from
     _geometry: tuple | _Deferred = field(repr=False)
-    #: Poisson's ratios (nu1, nu2) of the bodies, for the stresses
+    #: Poisson's ratios (nu1, nu2) of the bodies, for the stresses, then their Young's
+    #: moduli (E1, E2), for the tangential compliance
     _nu: tuple = field(repr=False)
 
     ellipticity = _geometry_field(0, "a / b >= 1 [-].")
@@ -567,7 +568,7 @@ def contact(body1: Body, body2: Body, load=None, angle=0.0, *, approach=None,
     if any(is_duck_array(a) for a in args):
         shape = _dask_shape(args)
         return Contact(*_dask_apply(fused, args, 6, shape), _Deferred(geometry, shape),
-                       (body1.nu, body2.nu))
+                       (body1.nu, body2.nu, body1.E, body2.E))
     geometry_shape = broadcast_shape(**dict(zip(_GEOMETRY_NAMES, geometry, strict=True)))
     shape = broadcast_shape(**dict(zip(_GEOMETRY_NAMES, geometry, strict=True)),
                             **{name: args[9]})
@@ -575,14 +576,15 @@ def contact(body1: Body, body2: Body, load=None, angle=0.0, *, approach=None,
         if math.prod(geometry_shape) == math.prod(shape):
             if not shape:  # numpy scalars or 0-d arrays: the scalar path
                 return _ufuncs.contact(mode, *(float(x) for x in args))
-            return Contact(*fused(*args), _Deferred(geometry, shape), (body1.nu, body2.nu))
+            return Contact(*fused(*args), _Deferred(geometry, shape),
+                           (body1.nu, body2.nu, body1.E, body2.E))
         # One geometry carries many loads: solve each geometry once and
         # broadcast its fields (read-only views) over the loads.
         coefficients = _ufuncs.contact_coefficients(*geometry)
         fields = coefficients[:9]
         given_values = given(fields[0], *coefficients[9:], args[9])
         return Contact(*given_values, tuple(np.broadcast_to(x, shape) for x in fields),
-                       (body1.nu, body2.nu))
+                       (body1.nu, body2.nu, body1.E, body2.E))
     except ValueError as exc:
         err = _first_error(_ufuncs.contact_status, _ufuncs.contact, args, shape, (mode,))
         raise (err or exc) from None
