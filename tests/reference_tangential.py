@@ -1,0 +1,176 @@
+"""Independent mpmath reference for tangential (Cattaneo-Mindlin) contact; does not import hertz.
+
+Everything here comes from Cerruti's point-force solution integrated over the traction, not
+from the closed forms in K(m), E(m) of hertz/_tangential.py.
+
+Cerruti: a tangential point force F along x on the surface of a half-space (shear modulus G,
+Poisson's ratio nu) displaces the surface point at offset r (cos t, sin t) by
+
+    u_x = F / (2 pi G) [(1 - nu) + nu cos^2 t] / r,   u_y = F / (2 pi G) nu cos t sin t / r
+
+(Johnson, Contact Mechanics, eq. 3.86a,b; for a force along y swap cos and sin in u_y's
+partner: u_y = F / (2 pi G) [(1 - nu) + nu sin^2 t] / r).
+
+The displacement at a field point (x0, y0) of the ellipse x^2/a^2 + y^2/b^2 <= 1 is written in
+polar coordinates (rho, t) centred on the field point. Along a ray, 1 - x^2/a^2 - y^2/b^2 is a
+quadratic A (R - rho)(rho + R') with A = cos^2 t / a^2 + sin^2 t / b^2 and R, R' > 0 the
+distances to the edge forwards and backwards, so the radial integral of the two tractions used
+here is elementary (h = (R + R')/2, s = (R - R')/2):
+
+    int_0^R (A (R - rho)(rho + R'))^(-1/2) d rho = (pi/2 + asin(s/h)) / sqrt(A)
+    int_0^R (A (R - rho)(rho + R'))^(1/2)  d rho = sqrt(A) (h^2 (pi/4 + asin(s/h)/2)
+                                                           + s sqrt(R R') / 2)
+
+and the angular integral is taken by mpmath.quad (tanh-sinh) on the four quadrants. The
+1/r of the kernel cancels the rho of the area element. For a very long ellipse the
+integrand has peaks of width b/a at t = 0 and pi, which are quadrant ends (tanh-sinh
+clusters its nodes there); off-centre points add breakpoints at the directions to the ends
+of the axes.
+
+The relative displacement of the two bodies is the sum of the two bodies' displacements
+(Mindlin's uncoupled solution: the normal-tangential coupling of dissimilar bodies is
+neglected). The Masing branches and the loop energy are integrated numerically here from the
+quadrature's virgin curve.
+"""
+
+import mpmath as mp
+
+__all__ = ["no_slip_compliance", "displacement_no_slip", "displacement_hertz_traction",
+           "partial_slip_displacement", "masing_unloading", "loop_energy", "DPS"]
+
+DPS = 50
+
+
+def _rays(a, b, x0, y0, t):
+    """A(t), R(t), R'(t) for the ray from (x0, y0) in direction t."""
+    c, s = mp.cos(t), mp.sin(t)
+    A = c * c / (a * a) + s * s / (b * b)
+    B = x0 * c / (a * a) + y0 * s / (b * b)  # 1 - |p + rho e|^2 = (1 - |p|^2) - 2 B rho - A rho^2
+    c0 = 1 - x0 * x0 / (a * a) - y0 * y0 / (b * b)
+    disc = mp.sqrt(B * B + A * c0)
+    R = (disc - B) / A
+    rb = (disc + B) / A
+    return A, R, rb
+
+
+def _angular(f, a, b, x0, y0):
+    pts = [0, mp.pi / 2, mp.pi, 3 * mp.pi / 2, 2 * mp.pi]
+    if x0 or y0:  # directions to the ends of the axes, where the integrand turns fastest
+        extra = [mp.atan2(yy - y0, xx - x0) % (2 * mp.pi)
+                 for xx, yy in ((a, 0), (-a, 0), (0, b), (0, -b))]
+        pts = sorted(set(pts + extra))
+    return mp.quad(f, pts)
+
+
+def _moments(weight_radial, a, b, x0, y0, axis):
+    """(i0, i2): the angular integrals of the radial integral times 1 and times the
+    squared direction cosine along the force (cos^2 t for x, sin^2 t for y), and the
+    transverse one I_t (cos t sin t)."""
+    def parts(t):
+        A, R, rb = _rays(a, b, x0, y0, t)
+        w = weight_radial(A, R, rb)
+        c, s = mp.cos(t), mp.sin(t)
+        return w, w * (c * c if axis == "x" else s * s), w * c * s
+
+    i0 = _angular(lambda t: parts(t)[0], a, b, x0, y0)
+    i2 = _angular(lambda t: parts(t)[1], a, b, x0, y0)
+    i_t = _angular(lambda t: parts(t)[2], a, b, x0, y0)
+    return i0, i2, i_t
+
+
+def _inverse_sqrt_radial(A, R, rb):
+    h, s = (R + rb) / 2, (R - rb) / 2
+    return (mp.pi / 2 + mp.asin(s / h)) / mp.sqrt(A)
+
+
+def _sqrt_radial(A, R, rb):
+    h, s = (R + rb) / 2, (R - rb) / 2
+    return mp.sqrt(A) * (h * h * (mp.pi / 4 + mp.asin(s / h) / 2) + s * mp.sqrt(R * rb) / 2)
+
+
+def _bodies_sum(i0, i2, i_t, bodies):
+    """(along, transverse) displacement per unit traction scale, summed over bodies (G, nu)."""
+    along = sum(((1 - nu) * i0 + nu * i2) / (2 * mp.pi * G) for G, nu in bodies)
+    transverse = sum(nu * i_t / (2 * mp.pi * G) for G, nu in bodies)
+    return along, transverse
+
+
+def displacement_no_slip(a, b, bodies, x0=0, y0=0, axis="x"):
+    """Relative displacement (along, transverse) [m per N] at (x0, y0) under the no-slip
+    traction (1/(2 pi a b)) (1 - x^2/a^2 - y^2/b^2)^(-1/2) of unit force along ``axis``."""
+    with mp.workdps(DPS):
+        a, b, x0, y0 = mp.mpf(a), mp.mpf(b), mp.mpf(x0), mp.mpf(y0)
+        bodies = [(mp.mpf(G), mp.mpf(nu)) for G, nu in bodies]
+        i0, i2, i_t = _moments(_inverse_sqrt_radial, a, b, x0, y0, axis)
+        along, trans = _bodies_sum(i0, i2, i_t, bodies)
+        scale = 1 / (2 * mp.pi * a * b)
+        return along * scale, trans * scale
+
+
+def no_slip_compliance(a, b, bodies, axis="x"):
+    """No-slip tangential compliance [m/N] along a principal axis (at the centre)."""
+    return displacement_no_slip(a, b, bodies, 0, 0, axis)[0]
+
+
+def displacement_hertz_traction(a, b, bodies, x0=0, y0=0, axis="x"):
+    """Relative displacement (along, transverse) [m per Pa] at (x0, y0) under the traction
+    sqrt(1 - x^2/a^2 - y^2/b^2) along ``axis`` (times the peak value in Pa)."""
+    with mp.workdps(DPS):
+        a, b, x0, y0 = mp.mpf(a), mp.mpf(b), mp.mpf(x0), mp.mpf(y0)
+        bodies = [(mp.mpf(G), mp.mpf(nu)) for G, nu in bodies]
+        i0, i2, i_t = _moments(_sqrt_radial, a, b, x0, y0, axis)
+        return _bodies_sum(i0, i2, i_t, bodies)
+
+
+def partial_slip_displacement(a, b, load, mu, force, bodies, axis="x", x0=0, y0=0):
+    """Cattaneo-Mindlin relative displacement [m] at a stick point (x0, y0).
+
+    The traction is mu p0 sqrt(1 - r^2) minus mu p0 c sqrt(1 - r^2/c^2) on the stick ellipse
+    of ratio c with force mu P c^3 = mu P - Q (Mindlin's construction); the displacement of the
+    second term at (x0, y0) is c^2 times the first's at (x0/c, y0/c) (scaling of the
+    half-space). Returns (displacement, c)."""
+    with mp.workdps(DPS):
+        a, b, load, mu, force = (mp.mpf(v) for v in (a, b, load, mu, force))
+        p0 = 3 * load / (2 * mp.pi * a * b)
+        c = mp.cbrt(1 - force / (mu * load))
+        full = displacement_hertz_traction(a, b, bodies, x0, y0, axis)[0]
+        if c == 0:
+            return mu * p0 * full, c
+        stick = displacement_hertz_traction(a, b, bodies, x0 / c, y0 / c, axis)[0]
+        return mu * p0 * (full - c * c * stick), c
+
+
+def _virgin(j0, load, mu):
+    """The virgin curve Q -> displacement from the centre value j0 of the Hertz-shaped
+    traction's displacement: delta(Q) = mu p0 j0 (1 - c^2) (c^2 factor: scaling above)."""
+    def f(force):
+        c = mp.cbrt(1 - force / (mu * load))
+        return j0 * (1 - c * c)
+    return f
+
+
+def masing_unloading(a, b, load, mu, amplitude, forces, bodies, axis="x"):
+    """Displacements [m] on the unloading branch from Q* = amplitude, by Masing's rule
+    delta(Q) = delta(Q*) - 2 f((Q* - Q)/2) with the quadrature's virgin curve f."""
+    with mp.workdps(DPS):
+        a, b, load, mu = (mp.mpf(v) for v in (a, b, load, mu))
+        p0 = 3 * load / (2 * mp.pi * a * b)
+        j0 = mu * p0 * displacement_hertz_traction(a, b, bodies, 0, 0, axis)[0]
+        f = _virgin(j0, load, mu)
+        top = f(mp.mpf(amplitude))
+        return [top - 2 * f((mp.mpf(amplitude) - mp.mpf(force)) / 2) for force in forces]
+
+
+def loop_energy(a, b, load, mu, amplitude, bodies, axis="x"):
+    """Energy [J] dissipated per cycle Q* -> -Q* -> Q*: the area between the Masing branches,
+    integrated numerically (mpmath.quad) from the quadrature's virgin curve."""
+    with mp.workdps(DPS):
+        a, b, load, mu, qa = (mp.mpf(v) for v in (a, b, load, mu, amplitude))
+        p0 = 3 * load / (2 * mp.pi * a * b)
+        j0 = mu * p0 * displacement_hertz_traction(a, b, bodies, 0, 0, axis)[0]
+        f = _virgin(j0, load, mu)
+        top = f(qa)
+
+        def gap(force):  # unloading branch minus reloading branch
+            return (top - 2 * f((qa - force) / 2)) - (-top + 2 * f((qa + force) / 2))
+        return mp.quad(gap, [-qa, 0, qa])
