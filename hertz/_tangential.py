@@ -61,7 +61,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from ._validate import as_float_array, broadcast_shape, error_at, first_failure
+from ._validate import as_float_array, broadcast_shape, error_at, first_failure, index_text
 
 __all__ = ["FrettingLoop", "Tangential", "TangentialSpring", "dundurs_beta",
            "proportional_loading", "tangential_compliance", "tangential_history"]
@@ -110,27 +110,35 @@ def _require_load(contact, what):
 
 
 # ----------------------------------------------------------------------- compliance
-def _axis_compliances(contact):
-    """(c_x, c_y) [m/N]: no-slip compliance along the major and minor axes, summed over
-    the bodies (module docstring)."""
+def _unit_compliances(contact):
+    """(c_x, c_y) times pi a [1/Pa]: the no-slip compliances along the major and minor
+    axes, summed over the bodies (module docstring), without the 1/(pi a)."""
     nu1, nu2, e1, e2 = _moduli(contact)
     K = contact.K
-    aspect2 = np.square(contact.b / contact.a) if np.ndim(contact.a) else None
     a = contact.a
     with np.errstate(divide="ignore", invalid="ignore"):
-        if aspect2 is None:  # scalar contact
+        if np.ndim(a) == 0:
             aspect2 = (contact.b / a) ** 2 if a > 0 else 1.0 - contact.m
-        else:
-            aspect2 = np.where(a > 0, aspect2, 1.0 - contact.m)
-        D = K / (1.0 + contact.alpha * aspect2)  # alpha = B / ((1-m) D), K = B + D
-        B = K - D
-        # 1/(2 pi G) = (1 + nu) / (pi E)
-        w1 = (1.0 + nu1) / e1
-        w2 = (1.0 + nu2) / e2
-        scale = 1.0 / (math.pi * a)
-        cx = (w1 * (K - nu1 * B) + w2 * (K - nu2 * B)) * scale
-        cy = (w1 * (K - nu1 * D) + w2 * (K - nu2 * D)) * scale
-    return cx, cy
+        else:  # (b/a)^2 = 1 - m without the rounding of m near 1; zero load: 1 - m
+            aspect2 = np.where(a > 0, np.square(contact.b / a), 1.0 - contact.m)
+    D = K / (1.0 + contact.alpha * aspect2)  # alpha = B / ((1-m) D), K = B + D
+    B = K - D
+    # 1/(2 pi G) = (1 + nu) / (pi E)
+    w1 = (1.0 + nu1) / e1
+    w2 = (1.0 + nu2) / e2
+    return w1 * (K - nu1 * B) + w2 * (K - nu2 * B), w1 * (K - nu1 * D) + w2 * (K - nu2 * D)
+
+
+def _per_area(unit, contact):
+    """A unit compliance divided by pi a [m/N] (inf at zero load)."""
+    with np.errstate(divide="ignore"):
+        return unit / np.multiply(math.pi, contact.a)
+
+
+def _axis_compliances(contact):
+    """(c_x, c_y) [m/N]: no-slip compliance along the major and minor axes."""
+    cx, cy = _unit_compliances(contact)
+    return _per_area(cx, contact), _per_area(cy, contact)
 
 
 def _along(cx, cy, direction):
@@ -189,10 +197,9 @@ def tangential_compliance(contact):
 def tangential_stiffness(contact, direction=0.0):
     """No-slip tangential stiffness [N/m] along ``direction`` (the force's angle from
     the major axis [rad]): 1 / (c_x cos^2 t + c_y sin^2 t); 0 at zero load."""
-    cx, cy = _axis_compliances(contact)
+    cx, cy = _unit_compliances(contact)
     along, _ = _along(cx, cy, _direction(direction))
-    with np.errstate(divide="ignore"):
-        return _out(1.0 / along)
+    return _out(np.multiply(math.pi, contact.a) / along)
 
 
 def dundurs_beta(contact):
@@ -248,12 +255,11 @@ def _force_ratio(force, mu, load, shape_name="force"):
     if not np.all(ok):
         shape = np.broadcast_shapes(np.shape(force), np.shape(limit))
         i = first_failure(np.broadcast_to(ok, shape))
-        f = np.broadcast_to(force, shape).reshape(-1)[i]
-        lim = np.broadcast_to(limit, shape).reshape(-1)[i]
-        where = "" if not shape else f" at index {np.unravel_index(i, shape)}"
+        f = float(np.broadcast_to(force, shape).reshape(-1)[i])
+        lim = float(np.broadcast_to(limit, shape).reshape(-1)[i])
         raise ValueError(f"{shape_name} must be at most mu * load = {lim!r} N (the limit of "
                          f"friction; beyond it the contact slides as a whole), got {f!r}"
-                         f"{where}")
+                         f"{index_text(shape, i)}")
     return force / limit
 
 
@@ -340,7 +346,8 @@ def partial_slip(contact, force, mu, direction=0.0) -> Tangential:
     cx, cy = _axis_compliances(contact)
     along, across = _along(cx, cy, direction)
     s = np.cbrt(1.0 - q)
-    reach = 1.5 * mu * load * _virgin(q)  # 3 mu P (1 - s^2) / 2
+    virgin = _virgin(q)  # 1 - s^2
+    limit = mu * load
     k = 1.0 / along
     a, b = contact.a, contact.b
     shape = broadcast_shape(contact=a, force=q, mu=mu, direction=direction)
@@ -349,8 +356,8 @@ def partial_slip(contact, force, mu, direction=0.0) -> Tangential:
         return _out(np.broadcast_to(x, shape).copy() if shape else x)
     force = np.asarray(force, dtype=np.float64)
     return Tangential(out(force), out(mu), out(direction), out(a * s), out(b * s),
-                      out(math.pi * a * b * (1.0 - s * s)), out(reach * along),
-                      out(reach * across), out(k * s), out(k),
+                      out(math.pi * a * b * (1.0 - s * s)), out(1.5 * limit * along * virgin),
+                      out(1.5 * limit * across * virgin), out(k * s), out(k),
                       bool(q == 1.0) if not shape else np.broadcast_to(q == 1.0, shape).copy(),
                       out(np.broadcast_to(dundurs_beta(contact), shape) if shape
                           else dundurs_beta(contact)),
@@ -383,11 +390,11 @@ class FrettingLoop:
     stiffness: float | np.ndarray
     mu: float | np.ndarray
     load: float | np.ndarray
+    _reach: float | np.ndarray  # 3 mu P / (2 k), the displacement where sliding starts
 
     def _f(self, x):
         """The virgin curve Q -> displacement [m] for 0 <= x <= mu P."""
-        limit = self.mu * self.load
-        return 1.5 * limit * _virgin(x / limit) / self.stiffness
+        return self._reach * _virgin(x / (self.mu * self.load))
 
     def unloading(self, force):
         """Displacement [m] on the branch from Q* down to -Q*:
@@ -425,9 +432,10 @@ def fretting(contact, amplitude, mu, direction=0.0) -> FrettingLoop:
 
     def out(x):
         return _out(np.broadcast_to(x, shape).copy() if shape else x)
-    return FrettingLoop(out(amplitude), out(1.5 * limit * _virgin(q) * along),
+    reach = 1.5 * limit * along
+    return FrettingLoop(out(amplitude), out(reach * _virgin(q)),
                         out(limit * limit * _loop_energy(q) * along), out(1.0 / along),
-                        out(mu), out(load))
+                        out(mu), out(load), out(reach))
 
 
 # ----------------------------------------------------------------------- histories

@@ -35,8 +35,9 @@ quadrature's virgin curve.
 
 import mpmath as mp
 
-__all__ = ["no_slip_compliance", "displacement_no_slip", "displacement_hertz_traction",
-           "partial_slip_displacement", "masing_unloading", "loop_energy", "DPS"]
+__all__ = ["DPS", "displacement_hertz_traction", "displacement_no_slip", "loop_energy",
+           "masing_unloading", "no_slip_compliance", "partial_slip_displacement",
+           "sliding_displacement", "virgin"]
 
 DPS = 50
 
@@ -72,6 +73,11 @@ def _moments(weight_radial, a, b, x0, y0, axis):
         c, s = mp.cos(t), mp.sin(t)
         return w, w * (c * c if axis == "x" else s * s), w * c * s
 
+    if not (x0 or y0):  # the centre: the integrand has the ellipse's symmetry (and no
+        # transverse part), so one quadrant suffices
+        i0 = 4 * mp.quad(lambda t: parts(t)[0], [0, mp.pi / 2])
+        i2 = 4 * mp.quad(lambda t: parts(t)[1], [0, mp.pi / 2])
+        return i0, i2, mp.mpf(0)
     i0 = _angular(lambda t: parts(t)[0], a, b, x0, y0)
     i2 = _angular(lambda t: parts(t)[1], a, b, x0, y0)
     i_t = _angular(lambda t: parts(t)[2], a, b, x0, y0)
@@ -140,37 +146,43 @@ def partial_slip_displacement(a, b, load, mu, force, bodies, axis="x", x0=0, y0=
         return mu * p0 * (full - c * c * stick), c
 
 
-def _virgin(j0, load, mu):
-    """The virgin curve Q -> displacement from the centre value j0 of the Hertz-shaped
-    traction's displacement: delta(Q) = mu p0 j0 (1 - c^2) (c^2 factor: scaling above)."""
-    def f(force):
-        c = mp.cbrt(1 - force / (mu * load))
-        return j0 * (1 - c * c)
-    return f
-
-
-def masing_unloading(a, b, load, mu, amplitude, forces, bodies, axis="x"):
-    """Displacements [m] on the unloading branch from Q* = amplitude, by Masing's rule
-    delta(Q) = delta(Q*) - 2 f((Q* - Q)/2) with the quadrature's virgin curve f."""
+def sliding_displacement(a, b, load, mu, bodies, axis="x"):
+    """The displacement [m] at the onset of sliding (Q = mu P) along ``axis``: the centre
+    displacement of the traction mu p0 sqrt(1 - r^2), by quadrature."""
     with mp.workdps(DPS):
         a, b, load, mu = (mp.mpf(v) for v in (a, b, load, mu))
         p0 = 3 * load / (2 * mp.pi * a * b)
-        j0 = mu * p0 * displacement_hertz_traction(a, b, bodies, 0, 0, axis)[0]
-        f = _virgin(j0, load, mu)
-        top = f(mp.mpf(amplitude))
-        return [top - 2 * f((mp.mpf(amplitude) - mp.mpf(force)) / 2) for force in forces]
+        return mu * p0 * displacement_hertz_traction(a, b, bodies, 0, 0, axis)[0]
 
 
-def loop_energy(a, b, load, mu, amplitude, bodies, axis="x"):
+def virgin(reach, load, mu, force):
+    """The virgin curve: displacement [m] at ``force`` from the sliding displacement ``reach``:
+    the stick ellipse of ratio c = (1 - Q/(mu P))^(1/3) carries a Hertz-shaped traction c times
+    smaller over an ellipse c times smaller, whose displacement is c^2 that of the whole.
+    Elementary, so it is evaluated with 15 guard digits (1 - c^2 and the loop's branch
+    differences cancel as the force -> 0)."""
+    with mp.workdps(DPS + 15):
+        c = mp.cbrt(1 - mp.mpf(force) / (mp.mpf(mu) * mp.mpf(load)))
+        return reach * (1 - c * c)
+
+
+def masing_unloading(reach, load, mu, amplitude, forces):
+    """Displacements [m] on the unloading branch from Q* = amplitude, by Masing's rule
+    delta(Q) = delta(Q*) - 2 f((Q* - Q)/2) with the quadrature's virgin curve f."""
+    with mp.workdps(DPS + 15):
+        top = virgin(reach, load, mu, amplitude)
+        return [top - 2 * virgin(reach, load, mu, (mp.mpf(amplitude) - mp.mpf(q)) / 2)
+                for q in forces]
+
+
+def loop_energy(reach, load, mu, amplitude):
     """Energy [J] dissipated per cycle Q* -> -Q* -> Q*: the area between the Masing branches,
     integrated numerically (mpmath.quad) from the quadrature's virgin curve."""
-    with mp.workdps(DPS):
-        a, b, load, mu, qa = (mp.mpf(v) for v in (a, b, load, mu, amplitude))
-        p0 = 3 * load / (2 * mp.pi * a * b)
-        j0 = mu * p0 * displacement_hertz_traction(a, b, bodies, 0, 0, axis)[0]
-        f = _virgin(j0, load, mu)
-        top = f(qa)
+    with mp.workdps(DPS + 15):
+        qa = mp.mpf(amplitude)
+        top = virgin(reach, load, mu, qa)
 
-        def gap(force):  # unloading branch minus reloading branch
-            return (top - 2 * f((qa - force) / 2)) - (-top + 2 * f((qa + force) / 2))
+        def gap(q):  # unloading branch minus reloading branch
+            return ((top - 2 * virgin(reach, load, mu, (qa - q) / 2))
+                    - (-top + 2 * virgin(reach, load, mu, (qa + q) / 2)))
         return mp.quad(gap, [-qa, 0, qa])
