@@ -110,23 +110,41 @@ def _require_load(contact, what):
 
 
 # ----------------------------------------------------------------------- compliance
-def _unit_compliances(contact):
-    """(c_x, c_y) times pi a [1/Pa]: the no-slip compliances along the major and minor
-    axes, summed over the bodies (module docstring), without the 1/(pi a)."""
+def _compliance_terms(contact):
+    """K, D and the bodies' sums W = sum (1 + nu)/E and Wn = sum nu (1 + nu)/E [1/Pa], from
+    which the no-slip compliances times pi a are c_x = W K - Wn B, c_y = W K - Wn D
+    (1/(2 pi G) = (1 + nu)/(pi E); module docstring)."""
     nu1, nu2, e1, e2 = _moduli(contact)
-    K = contact.K
-    a = contact.a
-    with np.errstate(divide="ignore", invalid="ignore"):
-        if np.ndim(a) == 0:
-            aspect2 = (contact.b / a) ** 2 if a > 0 else 1.0 - contact.m
-        else:  # (b/a)^2 = 1 - m without the rounding of m near 1; zero load: 1 - m
-            aspect2 = np.where(a > 0, np.square(contact.b / a), 1.0 - contact.m)
-    D = K / (1.0 + contact.alpha * aspect2)  # alpha = B / ((1-m) D), K = B + D
-    B = K - D
-    # 1/(2 pi G) = (1 + nu) / (pi E)
     w1 = (1.0 + nu1) / e1
     w2 = (1.0 + nu2) / e2
-    return w1 * (K - nu1 * B) + w2 * (K - nu2 * B), w1 * (K - nu1 * D) + w2 * (K - nu2 * D)
+    K = contact.K
+    lam = contact.ellipticity  # a / b
+    # alpha = B / ((1-m) D) with 1 - m = 1/lam^2 and K = B + D: D = K / (1 + alpha/lam^2),
+    # no cancellation anywhere (and no overflow for the longest ellipses)
+    D = K / (1.0 + contact.alpha / lam / lam)
+    return K, D, w1 + w2, w1 * nu1 + w2 * nu2
+
+
+def _direction_terms(direction):
+    """cos 2t and sin 2t (one trigonometric pass each; 1 and 0 for the scalar 0)."""
+    if np.ndim(direction) == 0 and direction == 0.0:
+        return 1.0, 0.0
+    twice = 2.0 * direction
+    return np.cos(twice), np.sin(twice)
+
+
+def _unit_along(contact, direction, transverse=False):
+    """The compliance along the force and across it, times pi a [1/Pa]:
+    c_x cos^2 t + c_y sin^2 t = W K - Wn (K/2 + (K/2 - D) cos 2t) and
+    (c_y - c_x) sin t cos t = Wn (K - 2D) sin 2t / 2 (B - D = K - 2D)."""
+    K, D, W, Wn = _compliance_terms(contact)
+    cos2, sin2 = _direction_terms(direction)
+    half_k = 0.5 * K
+    split = half_k - D  # (B - D)/2: small near a circle, exact enough beside K/2
+    along = W * K - Wn * (half_k + split * cos2)
+    if not transverse:
+        return along, None
+    return along, Wn * split * sin2
 
 
 def _per_area(unit, contact):
@@ -135,17 +153,10 @@ def _per_area(unit, contact):
         return unit / np.multiply(math.pi, contact.a)
 
 
-def _axis_compliances(contact):
-    """(c_x, c_y) [m/N]: no-slip compliance along the major and minor axes."""
-    cx, cy = _unit_compliances(contact)
-    return _per_area(cx, contact), _per_area(cy, contact)
-
-
-def _along(cx, cy, direction):
-    """Compliance along the force c_x cos^2 t + c_y sin^2 t and across it
-    (c_y - c_x) sin t cos t [m/N]."""
-    c, s = np.cos(direction), np.sin(direction)
-    return cx * c * c + cy * s * s, (cy - cx) * s * c
+def _along(contact, direction, transverse=False):
+    """Compliance along the force (and across it) [m/N]."""
+    along, across = _unit_along(contact, direction, transverse)
+    return _per_area(along, contact), None if across is None else _per_area(across, contact)
 
 
 def tangential_compliance(contact):
@@ -186,7 +197,8 @@ def tangential_compliance(contact):
     >>> print(f"{C[0, 0] * 8 * G * c.a / (2 * 1.7):.15f}")
     1.000000000000000
     """
-    cx, cy = _axis_compliances(contact)
+    cx = _along(contact, 0.0)[0]
+    cy = _along(contact, math.pi / 2)[0]
     cx, cy = np.asarray(cx), np.asarray(cy)
     out = np.zeros(np.broadcast_shapes(cx.shape, cy.shape) + (2, 2))
     out[..., 0, 0] = cx
@@ -197,8 +209,7 @@ def tangential_compliance(contact):
 def tangential_stiffness(contact, direction=0.0):
     """No-slip tangential stiffness [N/m] along ``direction`` (the force's angle from
     the major axis [rad]): 1 / (c_x cos^2 t + c_y sin^2 t); 0 at zero load."""
-    cx, cy = _unit_compliances(contact)
-    along, _ = _along(cx, cy, _direction(direction))
+    along, _ = _unit_along(contact, _direction(direction))
     return _out(np.multiply(math.pi, contact.a) / along)
 
 
@@ -226,9 +237,11 @@ def dundurs_beta(contact):
 
 
 # ----------------------------------------------------------------------- virgin curve
-def _virgin(q):
-    """1 - (1 - q)^(2/3) for 0 <= q <= 1, without cancellation as q -> 0."""
-    s = np.cbrt(1.0 - q)
+def _virgin(q, s=None):
+    """1 - (1 - q)^(2/3) for 0 <= q <= 1, without cancellation as q -> 0 (s: the cube
+    root of 1 - q if known)."""
+    if s is None:
+        s = np.cbrt(1.0 - q)
     return q * (1.0 + s) / (1.0 + s + s * s)
 
 
@@ -246,15 +259,16 @@ def _loop_energy(q):
 
 
 def _force_ratio(force, mu, load, shape_name="force"):
-    """q = force / (mu P), checked: 0 <= force <= mu P."""
-    force = _checked(force, shape_name, lambda v: (v >= 0) & (v < math.inf),
-                     "a non-negative, finite tangential force in N")
+    """q = force / (mu P), checked: 0 <= force <= mu P (one pass when all is well)."""
+    force = as_float_array(force, shape_name)
     limit = mu * load
     with np.errstate(invalid="ignore"):
-        ok = force <= limit
-    if not np.all(ok):
-        shape = np.broadcast_shapes(np.shape(force), np.shape(limit))
-        i = first_failure(np.broadcast_to(ok, shape))
+        ok = (force >= 0) & (force <= limit)  # false for NaN; mu P is finite
+    if not ok.all():
+        _checked(force, shape_name, lambda v: (v >= 0) & (v < math.inf),
+                 "a non-negative, finite tangential force in N")
+        shape = ok.shape
+        i = first_failure(ok)
         f = float(np.broadcast_to(force, shape).reshape(-1)[i])
         lim = float(np.broadcast_to(limit, shape).reshape(-1)[i])
         raise ValueError(f"{shape_name} must be at most mu * load = {lim!r} N (the limit of "
@@ -336,6 +350,13 @@ class Tangential:
             return _out(self.mu * self._p0 * (full - stick))
 
 
+def _broadcast(x, shape):
+    """x as a Python float (0-d) or a read-only view of ``shape`` (no copy)."""
+    if not shape:
+        return _out(x)
+    return x if np.shape(x) == shape else np.broadcast_to(x, shape)
+
+
 def partial_slip(contact, force, mu, direction=0.0) -> Tangential:
     """The :class:`Tangential` state of ``contact`` under ``force`` [N] (see
     :meth:`hertz.Contact.tangential`)."""
@@ -343,25 +364,20 @@ def partial_slip(contact, force, mu, direction=0.0) -> Tangential:
     direction = _direction(direction)
     load = _require_load(contact, "a tangential force")
     q = _force_ratio(force, mu, load)
-    cx, cy = _axis_compliances(contact)
-    along, across = _along(cx, cy, direction)
+    along, across = _along(contact, direction, transverse=True)
     s = np.cbrt(1.0 - q)
-    virgin = _virgin(q)  # 1 - s^2
-    limit = mu * load
+    virgin = _virgin(q, s)  # 1 - s^2
+    reach = 1.5 * (mu * load)  # 3 mu P / 2, times the compliance
     k = 1.0 / along
     a, b = contact.a, contact.b
     shape = broadcast_shape(contact=a, force=q, mu=mu, direction=direction)
-
-    def out(x):
-        return _out(np.broadcast_to(x, shape).copy() if shape else x)
-    force = np.asarray(force, dtype=np.float64)
-    return Tangential(out(force), out(mu), out(direction), out(a * s), out(b * s),
-                      out(math.pi * a * b * (1.0 - s * s)), out(1.5 * limit * along * virgin),
-                      out(1.5 * limit * across * virgin), out(k * s), out(k),
-                      bool(q == 1.0) if not shape else np.broadcast_to(q == 1.0, shape).copy(),
-                      out(np.broadcast_to(dundurs_beta(contact), shape) if shape
-                          else dundurs_beta(contact)),
-                      out(a), out(b), out(contact.p0))
+    fields = (np.asarray(force, dtype=np.float64), mu, direction, a * s, b * s,
+              math.pi * a * b * virgin, reach * along * virgin, reach * across * virgin,
+              k * s, k, q == 1.0, dundurs_beta(contact), a, b, contact.p0)
+    fields = [_broadcast(x, shape) for x in fields]
+    if not shape:
+        fields[10] = bool(fields[10])
+    return Tangential(*fields)
 
 
 # ----------------------------------------------------------------------- fretting
@@ -424,8 +440,7 @@ def fretting(contact, amplitude, mu, direction=0.0) -> FrettingLoop:
     direction = _direction(direction)
     load = _require_load(contact, "a tangential force")
     q = _force_ratio(amplitude, mu, load, "amplitude")
-    cx, cy = _axis_compliances(contact)
-    along, _ = _along(cx, cy, direction)
+    along, _ = _along(contact, direction)
     limit = mu * load
     amplitude = np.asarray(amplitude, dtype=np.float64)
     shape = np.broadcast_shapes(np.shape(q), np.shape(along))
@@ -481,8 +496,7 @@ def tangential_history(contact, forces, mu, direction=0.0):
     if forces.ndim == 0:
         raise ValueError("forces must be an array of shape (n, ...) of tangential forces in N")
     _force_ratio(np.abs(forces), mu, load, "forces")  # |Q| <= mu P
-    cx, cy = _axis_compliances(contact)
-    along, _ = _along(cx, cy, direction)
+    along, _ = _along(contact, direction)
     limit = mu * load
     shape = np.broadcast_shapes(forces.shape[1:], np.shape(limit), np.shape(along))
     flat = np.broadcast_to(forces, (forces.shape[0],) + shape).reshape(forces.shape[0], -1)
@@ -597,8 +611,7 @@ def proportional_loading(contact, force, mu, direction=0.0):
         i = first_failure(np.broadcast_to(q < 1.0, np.shape(q)))
         raise ValueError("force / load must stay below mu for loading without slip (it "
                          f"slides from the start){'' if not np.ndim(q) else f' at index {i}'}")
-    cx, cy = _axis_compliances(contact)
-    along, _ = _along(cx, cy, direction)
+    along, _ = _along(contact, direction)
     return _out(1.5 * np.asarray(force, dtype=np.float64) * along)
 
 
@@ -648,8 +661,7 @@ class TangentialSpring:
         mu = _mu(mu)
         direction = _direction(direction)
         load = _require_load(contact, "a tangential spring")
-        cx, cy = _axis_compliances(contact)
-        along, _ = _along(cx, cy, direction)
+        along, _ = _along(contact, direction)
         limit = mu * load
         self._shape = np.broadcast_shapes(np.shape(limit), np.shape(along))
         self._limit = np.broadcast_to(limit, self._shape).reshape(-1).copy()
