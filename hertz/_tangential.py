@@ -137,14 +137,14 @@ def _unit_along(contact, direction, transverse=False):
     """The compliance along the force and across it, times pi a [1/Pa]:
     c_x cos^2 t + c_y sin^2 t = W K - Wn (K/2 + (K/2 - D) cos 2t) and
     (c_y - c_x) sin t cos t = Wn (K - 2D) sin 2t / 2 (B - D = K - 2D)."""
-    K, D, W, Wn = _compliance_terms(contact)
+    K, D, w_sum, wnu_sum = _compliance_terms(contact)
     cos2, sin2 = _direction_terms(direction)
     half_k = 0.5 * K
     split = half_k - D  # (B - D)/2: small near a circle, exact enough beside K/2
-    along = W * K - Wn * (half_k + split * cos2)
+    along = w_sum * K - wnu_sum * (half_k + split * cos2)
     if not transverse:
         return along, None
-    return along, Wn * split * sin2
+    return along, wnu_sum * split * sin2
 
 
 def _per_area(unit, contact):
