@@ -37,7 +37,7 @@ import mpmath as mp
 
 __all__ = ["DPS", "displacement_hertz_traction", "displacement_no_slip", "loop_energy",
            "masing_unloading", "no_slip_compliance", "partial_slip_displacement",
-           "sliding_displacement", "virgin"]
+           "sliding_displacement", "slip_misalignment", "virgin"]
 
 DPS = 50
 
@@ -118,13 +118,45 @@ def no_slip_compliance(a, b, bodies, axis="x"):
     return displacement_no_slip(a, b, bodies, 0, 0, axis)[0]
 
 
+def _outside_moments(a, b, x0, y0, axis):
+    """(i0, i2, i_t) of the traction sqrt(1 - r^2) at a point outside the ellipse: a ray
+    meets the ellipse, if at all, between the roots rho1 < rho2 of the quadratic, and
+    int_rho1^rho2 (A (rho2 - rho)(rho - rho1))^(1/2) d rho = pi (B^2 + A c0) / (2 A^(3/2));
+    the angle runs over the cone between the two tangents from the point."""
+    r0 = mp.sqrt((x0 / a) ** 2 + (y0 / b) ** 2)
+    psi, half = mp.atan2(y0 / b, x0 / a), mp.acos(1 / r0)
+    towards = mp.atan2(-y0, -x0)
+    edges = []
+    for phi in (psi - half, psi + half):  # the tangent points (a cos phi, b sin phi)
+        t = mp.atan2(b * mp.sin(phi) - y0, a * mp.cos(phi) - x0)
+        edges.append(towards + ((t - towards + mp.pi) % (2 * mp.pi) - mp.pi))
+    c0 = 1 - (x0 / a) ** 2 - (y0 / b) ** 2
+
+    def parts(t):
+        c, s = mp.cos(t), mp.sin(t)
+        A = c * c / (a * a) + s * s / (b * b)
+        B = x0 * c / (a * a) + y0 * s / (b * b)
+        disc = B * B + A * c0
+        if disc <= 0 or B >= 0:
+            return mp.mpf(0), mp.mpf(0), mp.mpf(0)
+        w = mp.pi * disc / (2 * A * mp.sqrt(A))
+        return w, w * (c * c if axis == "x" else s * s), w * c * s
+
+    lo, hi = min(edges), max(edges)
+    return tuple(mp.quad(lambda t, k=k: parts(t)[k], [lo, towards, hi]) for k in range(3))
+
+
 def displacement_hertz_traction(a, b, bodies, x0=0, y0=0, axis="x"):
     """Relative displacement (along, transverse) [m per Pa] at (x0, y0) under the traction
-    sqrt(1 - x^2/a^2 - y^2/b^2) along ``axis`` (times the peak value in Pa)."""
+    sqrt(1 - x^2/a^2 - y^2/b^2) along ``axis`` (times the peak value in Pa); (x0, y0)
+    inside or outside the ellipse."""
     with mp.workdps(DPS):
         a, b, x0, y0 = mp.mpf(a), mp.mpf(b), mp.mpf(x0), mp.mpf(y0)
         bodies = [(mp.mpf(G), mp.mpf(nu)) for G, nu in bodies]
-        i0, i2, i_t = _moments(_sqrt_radial, a, b, x0, y0, axis)
+        if (x0 / a) ** 2 + (y0 / b) ** 2 < 1:
+            i0, i2, i_t = _moments(_sqrt_radial, a, b, x0, y0, axis)
+        else:
+            i0, i2, i_t = _outside_moments(a, b, x0, y0, axis)
         return _bodies_sum(i0, i2, i_t, bodies)
 
 
@@ -186,3 +218,34 @@ def loop_energy(reach, load, mu, amplitude):
             return ((top - 2 * virgin(reach, load, mu, (qa - q) / 2))
                     - (-top + 2 * virgin(reach, load, mu, (qa + q) / 2)))
         return mp.quad(gap, [-qa, 0, qa])
+
+
+def slip_misalignment(a, b, bodies, q, direction, points):
+    """Angle [deg] between the slip and the force's line at points (x0, y0) of the slip
+    annulus, for Mindlin's traction at Q/(mu P) = q along ``direction`` [rad].
+
+    The traction is Mindlin's: mu p0 (sqrt(1 - r^2) - c sqrt(1 - r^2/c^2)) along the force,
+    c = (1 - q)^(1/3), i.e. cos t times the x-axis problem plus sin t times the y-axis one.
+    The slip is the surface's relative displacement there minus the stick zone's rigid
+    displacement; Coulomb's law wants it parallel to the traction, and it is not exactly:
+    this is the size of the approximation that Mindlin's solution (and this library)
+    makes.  The common factor mu p0 drops out."""
+    with mp.workdps(DPS):
+        a, b, direction = mp.mpf(a), mp.mpf(b), mp.mpf(direction)
+        c = mp.cbrt(1 - mp.mpf(q))
+        cos_t, sin_t = mp.cos(direction), mp.sin(direction)
+        rigid = {axis: displacement_hertz_traction(a, b, bodies, 0, 0, axis)[0] * (1 - c * c)
+                 for axis in "xy"}
+        out = []
+        for x0, y0 in points:
+            x0, y0 = mp.mpf(x0), mp.mpf(y0)
+            u = {}
+            for axis in "xy":
+                full = displacement_hertz_traction(a, b, bodies, x0, y0, axis)
+                stick = displacement_hertz_traction(a, b, bodies, x0 / c, y0 / c, axis)
+                u[axis] = (full[0] - c * c * stick[0], full[1] - c * c * stick[1])
+            slip_x = cos_t * (u["x"][0] - rigid["x"]) + sin_t * u["y"][1]
+            slip_y = cos_t * u["x"][1] + sin_t * (u["y"][0] - rigid["y"])
+            along = abs(slip_x * cos_t + slip_y * sin_t) / mp.hypot(slip_x, slip_y)
+            out.append(mp.degrees(mp.acos(min(along, 1))))
+        return out

@@ -385,3 +385,37 @@ def test_dundurs_beta():
     assert abs(b - (0.4 / g1 - 0.1 / g2) / (2 * (0.7 / g1 + 0.55 / g2))) < 1e-15
     assert hertz.dundurs_beta(_contact(1.0, POLYMER, STEEL)) == -b
     assert _contact(1.0, STEEL, POLYMER).tangential(1.0, MU).dundurs_beta == b
+
+
+# ----------------------------------------------------------------------------- annulus
+def test_reference_outside_the_ellipse():
+    """The reference's field outside the loaded ellipse (needed for the slip annulus) is
+    continuous across the edge and tends to Cerruti's point force far away."""
+    a, b, bodies = 1.0, 0.3, [(1.0, 0.3)]
+    t, h = 0.6, 1e-7
+    inside = ref.displacement_hertz_traction(a, b, bodies, (1 - h) * a * math.cos(t),
+                                             (1 - h) * b * math.sin(t), "y")
+    outside = ref.displacement_hertz_traction(a, b, bodies, (1 + h) * a * math.cos(t),
+                                              (1 + h) * b * math.sin(t), "y")
+    # observed 5.2e-7 and 4.1e-7, linear in h (5.2e-4 at h = 1e-4): the field's gradient
+    # times 2h; a wrong outside formula would be off by O(1)
+    assert abs(outside[0] / inside[0] - 1) < 8e-7 and abs(outside[1] / inside[1] - 1) < 8e-7
+    x0, y0 = 2000.0, 1300.0
+    far = ref.displacement_hertz_traction(a, b, bodies, x0, y0, "x")
+    force = 2 * mp.pi * a * b / 3  # the traction's resultant
+    r = math.hypot(x0, y0)
+    cerruti = force / (2 * mp.pi * r) * ((1 - 0.3) + 0.3 * (x0 / r) ** 2)
+    assert abs(far[0] / cerruti - 1) < 1.5e-8  # observed 8.8e-9: terms of order (a/r)^2
+
+
+def test_slip_annulus_misalignment_is_a_poisson_effect():
+    """Mindlin's approximation: slip in the annulus not parallel to the traction. None at
+    nu = 0 (for any direction), degrees at nu = 0.3 (figures: benchmarks/tangential_slip.py)."""
+    point = [(0.92 * math.cos(0.5), 0.2 * 0.92 * math.sin(0.5))]
+    dps, ref.DPS = ref.DPS, 15  # angles in degrees: 15 digits are plenty
+    try:
+        zero = ref.slip_misalignment(1.0, 0.2, [(1.0, 0.0)], 0.5, 0.7, point)[0]
+        steel = ref.slip_misalignment(1.0, 0.2, [(1.0, 0.3)], 0.5, 0.7, point)[0]
+    finally:
+        ref.DPS = dps
+    assert zero < 1e-12 and 1.0 < steel < 15.0
