@@ -419,3 +419,14 @@ def test_slip_annulus_misalignment_is_a_poisson_effect():
     finally:
         ref.DPS = dps
     assert zero < 1e-12 and 1.0 < steel < 15.0
+
+
+def test_stiffness_on_dask_is_lazy_and_the_same_bits():
+    da = pytest.importorskip("dask.array")
+    loads = np.linspace(1.0, 100.0, 10)
+    body1, body2 = hertz.Body(5e-3, 0.02, **STEEL), hertz.Body.plane(**GLASS)
+    lazy = hertz.contact(body1, body2, load=da.from_array(loads, chunks=5))
+    k = lazy.tangential_stiffness(0.3)
+    assert isinstance(k, da.Array)
+    np.testing.assert_array_equal(k.compute(),
+                                  hertz.contact(body1, body2, load=loads).tangential_stiffness(0.3))
