@@ -448,12 +448,12 @@ def test_spring_and_force_history_agree_on_a_random_path():
 
 
 def test_per_contact_moduli():
-    E1 = np.array([210e9, 70e9, 3e9])
+    moduli = np.array([210e9, 70e9, 3e9])
     nu1 = np.array([0.3, 0.22, 0.45])
-    c = hertz.contact(hertz.Body(5e-3, 0.02, E=E1, nu=nu1), hertz.Body.plane(**STEEL),
+    c = hertz.contact(hertz.Body(5e-3, 0.02, E=moduli, nu=nu1), hertz.Body.plane(**STEEL),
                       load=10.0)
     k = c.tangential_stiffness(0.4)
     for i in range(3):
-        one = hertz.contact(hertz.Body(5e-3, 0.02, E=float(E1[i]), nu=float(nu1[i])),
+        one = hertz.contact(hertz.Body(5e-3, 0.02, E=float(moduli[i]), nu=float(nu1[i])),
                             hertz.Body.plane(**STEEL), load=10.0)
         assert k[i] == one.tangential_stiffness(0.4)
