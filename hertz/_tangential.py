@@ -11,8 +11,12 @@ pressure is Hertz's whatever the tangential force, which is exact for elasticall
 similar bodies (Dundurs' beta = 0) and neglects Goodman's coupling otherwise
 (:func:`dundurs_beta` gives its size).
 
-Formulas (derived here and checked against a 50-digit quadrature of Cerruti's
-point-force solution, tests/reference_tangential.py)
+Sources: Cattaneo (1938); Mindlin, J. Appl. Mech. 16 (1949) 259; Mindlin &
+Deresiewicz, J. Appl. Mech. 20 (1953) 327; Deresiewicz, J. Appl. Mech. 24 (1957) 623
+(the elliptical contact); Johnson, Contact Mechanics (1985), ch. 7.
+
+Formulas (derived here; checked against a quadrature of Cerruti's point-force
+solution, tests/reference_tangential.py, at 50 digits and at 20 in the tests)
 ------------------------------------------------------------------------------
 With m, K(m), E(m) of the contact and Fukushima's B = (E - (1-m) K)/m and
 D = (K - E)/m: the no-slip traction Q/(2 pi a b) (1 - x^2/a^2 - y^2/b^2)^(-1/2)
@@ -21,14 +25,14 @@ part, by Q times the compliance
 
     c_x = sum_bodies (K - nu B) / (2 pi G a),   c_y = sum_bodies (K - nu D) / (2 pi G a)
 
-(a circle: c = sum (2 - nu) / (8 G a), Johnson, Contact Mechanics, eq. 7.40).
+(a circle: c = sum (2 - nu) / (8 G a), Mindlin's classic result).
 B and D are computed without cancellation from Hertz's own relation
 alpha = B / ((1 - m) D) and K = B + D: D = K / (1 + alpha (b/a)^2),
 B = alpha (b/a)^2 D.  A force Q at ``direction`` t gives the relative displacement
 Q (c_x cos t, c_y sin t) in the frame; along the force, Q / k_t with
 1/k_t = c_x cos^2 t + c_y sin^2 t.
 
-Partial slip (Mindlin 1949; Johnson eqs. 7.42-7.46 for the circle), q = Q/(mu P),
+Partial slip (Cattaneo 1938, Mindlin 1949), q = Q/(mu P),
 s = (1 - q)^(1/3): the stick zone is the ellipse similar to the contact ellipse with
 semi-axes s a, s b; the traction along the force is mu p0 [sqrt(1 - r^2) -
 s sqrt(1 - r^2/s^2)] (r^2 = x^2/a^2 + y^2/b^2, the second term in the stick zone
@@ -46,11 +50,11 @@ the mid-annulus ring, largest (mean) angle between slip and force: nu = 0.3, cir
 dask arrays: ``tangential_stiffness`` stays lazy; the other functions compute their
 inputs once to check them.
 
-Masing's rule (constant P; Mindlin & Deresiewicz 1953; Johnson sec. 7.4): a
-branch from a reversal point (Q_r, delta_r) is delta = delta_r + 2 f((Q - Q_r)/2)
-with f the (odd) virgin curve; a branch that reaches the reversal point it
-started from rejoins the branch before it (memory), and one that reaches the
-largest force so far rejoins the virgin curve.  The energy of a cycle
+Masing's rule (constant P; Mindlin & Deresiewicz 1953): a branch from a reversal
+point (Q_r, delta_r) is delta = delta_r + 2 f((Q - Q_r)/2) with f the (odd) virgin
+curve; a branch that reaches the point where the previous branch started closes
+that small loop and continues the branch before it (memory), and one that reaches
+the largest force so far continues on the virgin curve.  The energy of a cycle
 Q* -> -Q* -> Q* is, with q = Q*/(mu P) and s = (1 - q)^(1/3),
 
     W = (36 (mu P)^2 / (5 k)) [1 - (1-q)^(5/3) - (5q/6)(1 + (1-q)^(2/3))]
@@ -225,9 +229,9 @@ def dundurs_beta(contact):
 
     beta = [(1 - 2 nu1)/G1 - (1 - 2 nu2)/G2] / (2 [(1 - nu1)/G1 + (1 - nu2)/G2]),
     in [-1/2, 1/2]; 0 for elastically similar bodies.  It measures the coupling of
-    normal and tangential tractions (Goodman 1962) that Mindlin's solution, and so
-    this module, neglects (Johnson, Contact Mechanics, eq. 5.4b); for |beta| below
-    about 0.1 its effect on the tangential compliance is of order beta^2.
+    normal and tangential tractions (Goodman, J. Appl. Mech. 29 (1962) 515) that
+    Mindlin's solution, and so this module, neglects (Dundurs 1969; Johnson,
+    Contact Mechanics, ch. 5 and 7).
 
     Examples
     --------
@@ -575,8 +579,7 @@ class _Masing:
 def proportional_loading(contact, force, mu, direction=0.0):
     """Displacement [m] when the tangential and normal forces rise together from zero.
 
-    Mindlin & Deresiewicz (1953), the oblique force of fixed direction (Johnson,
-    Contact Mechanics, sec. 7.5): if Q/P stays fixed below mu, the traction is
+    Mindlin & Deresiewicz (1953), the oblique force of fixed direction: if Q/P stays fixed below mu, the traction is
     (Q/P) times the pressure everywhere, nothing slips, and the displacement is
     3 Q / (2 k) with k the no-slip stiffness at the final load (k grows as
     P^(1/3)): half again the displacement of the same Q applied at full load

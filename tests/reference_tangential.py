@@ -8,7 +8,7 @@ Poisson's ratio nu) displaces the surface point at offset r (cos t, sin t) by
 
     u_x = F / (2 pi G) [(1 - nu) + nu cos^2 t] / r,   u_y = F / (2 pi G) nu cos t sin t / r
 
-(Johnson, Contact Mechanics, eq. 3.86a,b; for a force along y swap cos and sin in u_y's
+(Johnson, Contact Mechanics, ch. 3; for a force along y swap cos and sin in u_y's
 partner: u_y = F / (2 pi G) [(1 - nu) + nu sin^2 t] / r).
 
 The displacement at a field point (x0, y0) of the ellipse x^2/a^2 + y^2/b^2 <= 1 is written in
