@@ -579,8 +579,9 @@ class _Masing:
 def proportional_loading(contact, force, mu, direction=0.0):
     """Displacement [m] when the tangential and normal forces rise together from zero.
 
-    Mindlin & Deresiewicz (1953), the oblique force of fixed direction: if Q/P stays fixed below mu, the traction is
-    (Q/P) times the pressure everywhere, nothing slips, and the displacement is
+    Mindlin & Deresiewicz (1953), the oblique force of fixed direction: if Q/P
+    stays fixed below mu, the traction is (Q/P) times the pressure everywhere,
+    nothing slips, and the displacement is
     3 Q / (2 k) with k the no-slip stiffness at the final load (k grows as
     P^(1/3)): half again the displacement of the same Q applied at full load
     before slip.  It applies to any monotonic loading with dQ/dP = Q/P < mu
