@@ -105,8 +105,12 @@ def _out(x):
 
 
 def _moduli(contact):
-    nu1, nu2, e1, e2 = contact._nu
-    return nu1, nu2, e1, e2
+    """(nu1, nu2, E1, E2) of the contact's bodies, as hertz.contact keeps them."""
+    moduli = contact._nu
+    if len(moduli) != 4:  # a Contact built by a path that does not keep the moduli
+        raise TypeError("this Contact does not carry its bodies' Young's moduli, which the "
+                        "tangential compliance needs; build it with hertz.contact")
+    return moduli
 
 
 def _require_load(contact, what):
