@@ -10,6 +10,17 @@ Conventions used throughout:
 
 from ._contact import Body, Contact, LineContact, contact, line_contact
 from ._ellipse import ellipticity
+from ._tangential import (
+    FrettingLoop,
+    Tangential,
+    TangentialSpring,
+    dundurs_beta,
+    proportional_loading,
+    tangential_compliance,
+    tangential_history,
+)
 
-__all__ = ["Body", "Contact", "LineContact", "contact", "ellipticity", "line_contact"]
+__all__ = ["Body", "Contact", "FrettingLoop", "LineContact", "Tangential", "TangentialSpring",
+           "contact", "dundurs_beta", "ellipticity", "line_contact", "proportional_loading",
+           "tangential_compliance", "tangential_history"]
 __version__ = "0.1.0"

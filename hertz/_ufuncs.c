@@ -673,12 +673,13 @@ register_contact_type(PyObject *self, PyObject *cls)
 }
 
 /* An instance of the registered class from the HERTZ_NOUT fields and the
- * two Poisson's ratios. */
+ * bodies' elastic constants (nu1, nu2, E1, E2): the stresses read the Poisson's
+ * ratios, the tangential compliance needs each body's own modulus too. */
 static PyObject *
-new_contact(const double *fields, const double nu[2])
+new_contact(const double *fields, const double moduli[4])
 {
     PyObject *geometry = tuple_of(fields + HERTZ_NGIVEN, HERTZ_NOUT - HERTZ_NGIVEN);
-    PyObject *poisson = tuple_of(nu, 2);
+    PyObject *poisson = tuple_of(moduli, 4);
     PyObject *obj = geometry && poisson ? contact_type->tp_alloc(contact_type, 0) : NULL;
     if (obj == NULL) {
         Py_XDECREF(geometry);
@@ -727,8 +728,8 @@ contact_scalar(PyObject *self, PyObject *const *args, Py_ssize_t nargs)
         set_error(code, x + 1, x[10], mode, rho_x, rho_y);
         return NULL;
     }
-    double nu[2] = {x[1 + HERTZ_NU1], x[1 + HERTZ_NU2]};
-    return contact_type ? new_contact(fields, nu) : tuple_of(fields, HERTZ_NOUT);
+    double moduli[4] = {x[1 + HERTZ_NU1], x[1 + HERTZ_NU2], x[1 + HERTZ_E1], x[1 + HERTZ_E2]};
+    return contact_type ? new_contact(fields, moduli) : tuple_of(fields, HERTZ_NOUT);
 }
 
 PyDoc_STRVAR(line_scalar_doc,

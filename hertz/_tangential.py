@@ -1,0 +1,726 @@
+"""Tangential loading of a Hertz point contact: Cattaneo-Mindlin partial slip and
+Mindlin-Deresiewicz histories (pure numpy, vectorised over contacts).
+
+Frame and model
+---------------
+The ellipse frame of :class:`hertz.Contact`: x along the major semi-axis a, y along
+the minor semi-axis b, ``direction`` the angle of the tangential force from x [rad].
+Each body has its own shear modulus G = E / (2 (1 + nu)) and Poisson's ratio nu.
+The tangential tractions are Mindlin's (1949) uncoupled solution: the normal
+pressure is Hertz's whatever the tangential force, which is exact for elastically
+similar bodies (Dundurs' beta = 0) and neglects Goodman's coupling otherwise
+(:func:`dundurs_beta` gives its size).
+
+Sources: Cattaneo (1938); Mindlin, J. Appl. Mech. 16 (1949) 259; Mindlin &
+Deresiewicz, J. Appl. Mech. 20 (1953) 327; Deresiewicz, J. Appl. Mech. 24 (1957) 623
+(the elliptical contact); Johnson, Contact Mechanics (1985), ch. 7.
+
+Formulas (derived here; checked against a quadrature of Cerruti's point-force
+solution, tests/reference_tangential.py, at 50 digits and at 20 in the tests)
+------------------------------------------------------------------------------
+With m, K(m), E(m) of the contact and Fukushima's B = (E - (1-m) K)/m and
+D = (K - E)/m: the no-slip traction Q/(2 pi a b) (1 - x^2/a^2 - y^2/b^2)^(-1/2)
+along a principal axis displaces the whole ellipse uniformly with no transverse
+part, by Q times the compliance
+
+    c_x = sum_bodies (K - nu B) / (2 pi G a),   c_y = sum_bodies (K - nu D) / (2 pi G a)
+
+(a circle: c = sum (2 - nu) / (8 G a), Mindlin's classic result).
+B and D are computed without cancellation from Hertz's own relation
+alpha = B / ((1 - m) D) and K = B + D: D = K / (1 + alpha (b/a)^2),
+B = alpha (b/a)^2 D.  A force Q at ``direction`` t gives the relative displacement
+Q (c_x cos t, c_y sin t) in the frame; along the force, Q / k_t with
+1/k_t = c_x cos^2 t + c_y sin^2 t.
+
+Partial slip (Cattaneo 1938, Mindlin 1949), q = Q/(mu P),
+s = (1 - q)^(1/3): the stick zone is the ellipse similar to the contact ellipse with
+semi-axes s a, s b; the traction along the force is mu p0 [sqrt(1 - r^2) -
+s sqrt(1 - r^2/s^2)] (r^2 = x^2/a^2 + y^2/b^2, the second term in the stick zone
+only); the displacement along the force is 3 mu P (1 - s^2) / (2 k_t) and the
+tangent stiffness dQ/d(delta) = s k_t.  In the stick zone this is exact for any
+direction (both axis problems give a rigid displacement there).  What is
+approximate, as in all of the literature, is the slip annulus: its traction is
+taken parallel to the force while the slip computed from it is not exactly
+parallel.  It is a Poisson effect (none at nu = 0) and larger off the axes;
+measured by Cerruti quadrature (benchmarks/tangential_slip.py) at Q/(mu P) = 0.5 on
+the mid-annulus ring, largest (mean) angle between slip and force: nu = 0.3, circle
+9.0 (6.0) degrees; b/a = 0.2 along a 5.9 (3.3), along b 7.4 (4.0), at 45 degrees
+10.1 (7.1); nu = 0.5 about twice that (b/a = 0.2 at 45 degrees: 19.3 (13.3)).
+
+dask arrays: ``tangential_stiffness`` stays lazy; the other functions compute their
+inputs once to check them.
+
+Masing's rule (constant P; Mindlin & Deresiewicz 1953): a branch from a reversal
+point (Q_r, delta_r) is delta = delta_r + 2 f((Q - Q_r)/2) with f the (odd) virgin
+curve; a branch that reaches the point where the previous branch started closes
+that small loop and continues the branch before it (memory), and one that reaches
+the largest force so far continues on the virgin curve.  The energy of a cycle
+Q* -> -Q* -> Q* is, with q = Q*/(mu P) and s = (1 - q)^(1/3),
+
+    W = (36 (mu P)^2 / (5 k)) [1 - (1-q)^(5/3) - (5q/6)(1 + (1-q)^(2/3))]
+      = (6 (mu P)^2 / (5 k)) q^3 (1 + 3s + s^2) / (1 + s + s^2)^3
+
+(the second form, derived here from 1 - 5 s^2 + 5 s^3 - s^5 = (1 - s)^3 (1 + 3s + s^2),
+keeps full precision as q -> 0, where W -> 2 Q*^3 / (9 mu P k)).  The forms
+1 - (1-q)^(2/3) = q (1+s) / (1+s+s^2) and its inverse are used for the same reason.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+
+from ._validate import as_float_array, broadcast_shape, error_at, first_failure, index_text
+
+__all__ = ["FrettingLoop", "Tangential", "TangentialSpring", "dundurs_beta",
+           "proportional_loading", "tangential_compliance", "tangential_history"]
+
+_MU = "a positive, finite coefficient of friction"
+_DIRECTION = "a finite angle in rad"
+
+
+# ----------------------------------------------------------------------- input checks
+def _checked(value, name, ok_fn, allowed):
+    arr = as_float_array(value, name)
+    with np.errstate(invalid="ignore"):
+        ok = ok_fn(arr)
+    if not np.all(ok):
+        raise error_at(name, arr, first_failure(np.broadcast_to(ok, arr.shape)), allowed)
+    return arr
+
+
+def _mu(mu):
+    return _checked(mu, "mu", lambda v: (v > 0) & (v < math.inf), _MU)
+
+
+def _direction(direction):
+    return _checked(direction, "direction", np.isfinite, _DIRECTION)
+
+
+def _out(x):
+    """A Python float for a 0-d result, else the array."""
+    return float(x) if np.ndim(x) == 0 else x
+
+
+def _moduli(contact):
+    """(nu1, nu2, E1, E2) of the contact's bodies, as hertz.contact keeps them."""
+    moduli = contact._nu
+    if len(moduli) != 4:  # a Contact built by a path that does not keep the moduli
+        raise TypeError("this Contact does not carry its bodies' Young's moduli, which the "
+                        "tangential compliance needs; build it with hertz.contact")
+    return moduli
+
+
+def _require_load(contact, what):
+    load = np.asarray(contact.load, dtype=np.float64)
+    ok = load > 0
+    if not np.all(ok):
+        i = first_failure(np.broadcast_to(ok, load.shape))
+        raise error_at("contact.load", load, i,
+                       f"positive for {what} (a contact without normal load carries no "
+                       "tangential force)")
+    return load
+
+
+# ----------------------------------------------------------------------- compliance
+def _compliance_terms(contact):
+    """K, D and the bodies' sums W = sum (1 + nu)/E and Wn = sum nu (1 + nu)/E [1/Pa], from
+    which the no-slip compliances times pi a are c_x = W K - Wn B, c_y = W K - Wn D
+    (1/(2 pi G) = (1 + nu)/(pi E); module docstring)."""
+    nu1, nu2, e1, e2 = _moduli(contact)
+    w1 = (1.0 + nu1) / e1
+    w2 = (1.0 + nu2) / e2
+    K = contact.K
+    lam = contact.ellipticity  # a / b
+    # alpha = B / ((1-m) D) with 1 - m = 1/lam^2 and K = B + D: D = K / (1 + alpha/lam^2),
+    # no cancellation anywhere (and no overflow for the longest ellipses)
+    D = K / (1.0 + contact.alpha / lam / lam)
+    return K, D, w1 + w2, w1 * nu1 + w2 * nu2
+
+
+def _direction_terms(direction):
+    """cos 2t and sin 2t (one trigonometric pass each; 1 and 0 for the scalar 0)."""
+    if np.ndim(direction) == 0 and direction == 0.0:
+        return 1.0, 0.0
+    twice = 2.0 * direction
+    return np.cos(twice), np.sin(twice)
+
+
+def _unit_along(contact, direction, transverse=False):
+    """The compliance along the force and across it, times pi a [1/Pa]:
+    c_x cos^2 t + c_y sin^2 t = W K - Wn (K/2 + (K/2 - D) cos 2t) and
+    (c_y - c_x) sin t cos t = Wn (K - 2D) sin 2t / 2 (B - D = K - 2D)."""
+    K, D, w_sum, wnu_sum = _compliance_terms(contact)
+    cos2, sin2 = _direction_terms(direction)
+    half_k = 0.5 * K
+    split = half_k - D  # (B - D)/2: small near a circle, exact enough beside K/2
+    along = w_sum * K - wnu_sum * (half_k + split * cos2)
+    if not transverse:
+        return along, None
+    return along, wnu_sum * split * sin2
+
+
+def _per_area(unit, contact):
+    """A unit compliance divided by pi a [m/N] (inf at zero load)."""
+    with np.errstate(divide="ignore"):
+        return unit / np.multiply(math.pi, contact.a)
+
+
+def _along(contact, direction, transverse=False):
+    """Compliance along the force (and across it) [m/N]."""
+    along, across = _unit_along(contact, direction, transverse)
+    return _per_area(along, contact), None if across is None else _per_area(across, contact)
+
+
+def tangential_compliance(contact):
+    """No-slip tangential compliance matrix of a contact in its ellipse frame [m/N].
+
+    The relative tangential displacement of distant points of the two bodies
+    (body 1 relative to body 2) is ``C @ Q`` for a tangential force Q [N] small
+    enough that nothing slips (or at the first instant of loading).  C is
+    diagonal in the ellipse frame: a force along a principal axis moves the
+    contact area rigidly along that axis with no transverse part.
+
+    Parameters
+    ----------
+    contact : Contact
+        A Hertz point contact (:func:`hertz.contact`).
+
+    Returns
+    -------
+    ndarray, shape (..., 2, 2)
+        ``[[c_x, 0], [0, c_y]]`` with c_x = sum (K - nu B) / (2 pi G a) along the
+        major axis and c_y = sum (K - nu D) / (2 pi G a) along the minor axis,
+        summed over the two bodies (G = E / (2 (1 + nu))).  Infinite for a
+        contact with zero load (a = 0).
+
+    Notes
+    -----
+    Mindlin's uncoupled solution: exact for elastically similar bodies, the
+    normal-tangential coupling of dissimilar ones neglected (see
+    :func:`dundurs_beta`).  For a circle c_x = c_y = sum (2 - nu) / (8 G a).
+
+    Examples
+    --------
+    >>> import hertz
+    >>> steel = hertz.Body.sphere(0.01, E=210e9, nu=0.3)
+    >>> c = hertz.contact(steel, hertz.Body.plane(E=210e9, nu=0.3), load=100.0)
+    >>> C = hertz.tangential_compliance(c)
+    >>> G = 210e9 / 2.6
+    >>> print(f"{C[0, 0] * 8 * G * c.a / (2 * 1.7):.15f}")
+    1.000000000000000
+    """
+    cx = _along(contact, 0.0)[0]
+    cy = _along(contact, math.pi / 2)[0]
+    cx, cy = np.asarray(cx), np.asarray(cy)
+    out = np.zeros(np.broadcast_shapes(cx.shape, cy.shape) + (2, 2))
+    out[..., 0, 0] = cx
+    out[..., 1, 1] = cy
+    return out
+
+
+def tangential_stiffness(contact, direction=0.0):
+    """No-slip tangential stiffness [N/m] along ``direction`` (the force's angle from
+    the major axis [rad]): 1 / (c_x cos^2 t + c_y sin^2 t); 0 at zero load."""
+    along, _ = _unit_along(contact, _direction(direction))
+    return _out(np.multiply(math.pi, contact.a) / along)
+
+
+def dundurs_beta(contact):
+    """Dundurs' second parameter beta [-] of the two bodies' materials.
+
+    beta = [(1 - 2 nu1)/G1 - (1 - 2 nu2)/G2] / (2 [(1 - nu1)/G1 + (1 - nu2)/G2]),
+    in [-1/2, 1/2]; 0 for elastically similar bodies.  It measures the coupling of
+    normal and tangential tractions (Goodman, J. Appl. Mech. 29 (1962) 515) that
+    Mindlin's solution, and so this module, neglects (Dundurs 1969; Johnson,
+    Contact Mechanics, ch. 5 and 7).
+
+    Examples
+    --------
+    >>> import hertz
+    >>> steel = hertz.Body.sphere(0.01, E=210e9, nu=0.3)
+    >>> glass = hertz.Body.plane(E=70e9, nu=0.22)
+    >>> print(f"{hertz.dundurs_beta(hertz.contact(steel, glass, load=10.0)):.4f}")
+    -0.2031
+    """
+    nu1, nu2, e1, e2 = _moduli(contact)
+    g1, g2 = 2.0 * (1.0 + nu1) / e1, 2.0 * (1.0 + nu2) / e2  # 1/G
+    return _out((g1 * (1.0 - 2.0 * nu1) - g2 * (1.0 - 2.0 * nu2))
+                / (2.0 * (g1 * (1.0 - nu1) + g2 * (1.0 - nu2))))
+
+
+# ----------------------------------------------------------------------- virgin curve
+def _virgin(q, s=None):
+    """1 - (1 - q)^(2/3) for 0 <= q <= 1, without cancellation as q -> 0 (s: the cube
+    root of 1 - q if known)."""
+    if s is None:
+        s = np.cbrt(1.0 - q)
+    return q * (1.0 + s) / (1.0 + s + s * s)
+
+
+def _virgin_inverse(r):
+    """The q in [0, 1] with 1 - (1 - q)^(2/3) = r, for 0 <= r <= 1 (q = 1 beyond)."""
+    t = np.sqrt(np.maximum(1.0 - r, 0.0))
+    return np.minimum(r * (1.0 + t + t * t) / (1.0 + t), 1.0)
+
+
+def _loop_energy(q):
+    """W k / (mu P)^2 for a cycle of amplitude q = Q*/(mu P) (module docstring)."""
+    s = np.cbrt(1.0 - q)
+    u = 1.0 + s + s * s
+    return 1.2 * q ** 3 * (1.0 + 3.0 * s + s * s) / (u * u * u)
+
+
+def _force_ratio(force, mu, load, shape_name="force"):
+    """q = force / (mu P), checked: 0 <= force <= mu P (one pass when all is well)."""
+    force = as_float_array(force, shape_name)
+    limit = mu * load
+    with np.errstate(invalid="ignore"):
+        ok = (force >= 0) & (force <= limit)  # false for NaN; mu P is finite
+    if not ok.all():
+        _checked(force, shape_name, lambda v: (v >= 0) & (v < math.inf),
+                 "a non-negative, finite tangential force in N")
+        shape = ok.shape
+        i = first_failure(ok)
+        f = float(np.broadcast_to(force, shape).reshape(-1)[i])
+        lim = float(np.broadcast_to(limit, shape).reshape(-1)[i])
+        raise ValueError(f"{shape_name} must be at most mu * load = {lim!r} N (the limit of "
+                         f"friction; beyond it the contact slides as a whole), got {f!r}"
+                         f"{index_text(shape, i)}")
+    return force / limit
+
+
+# ----------------------------------------------------------------------- monotonic
+@dataclass(frozen=True, slots=True)
+class Tangential:
+    """Cattaneo-Mindlin partial slip of a Hertz contact under a tangential force.
+
+    The force rises monotonically from 0 at constant normal load P.  Lengths in
+    m, forces in N, the ellipse frame of the contact (x along the major axis).
+
+    Attributes
+    ----------
+    force : float or ndarray
+        Tangential force Q [N], 0 <= Q <= mu P.
+    mu : float or ndarray
+        Coefficient of friction [-].
+    direction : float or ndarray
+        Angle of the force from the major axis [rad].
+    stick_a, stick_b : float or ndarray
+        Semi-axes of the stick ellipse [m]: (a, b) (1 - Q/(mu P))^(1/3).  Zero at
+        Q = mu P, where the whole contact slides.
+    slip_area : float or ndarray
+        Area of the slip annulus between the stick and contact ellipses [m**2].
+    displacement : float or ndarray
+        Relative tangential displacement of distant points along the force [m]:
+        3 mu P (1 - (1 - Q/(mu P))^(2/3)) / (2 k), k the no-slip stiffness along
+        the force.  At Q = mu P it is the displacement at which sliding starts.
+    displacement_transverse : float or ndarray
+        Its component perpendicular to the force (positive 90 degrees
+        counter-clockwise from it) [m]; 0 along a principal axis, else towards
+        the major axis, the more compliant one.
+    stiffness : float or ndarray
+        Tangent stiffness dQ/d(displacement) [N/m] = k (1 - Q/(mu P))^(1/3); 0 at
+        Q = mu P.
+    no_slip_stiffness : float or ndarray
+        k [N/m], the stiffness at Q = 0.
+    sliding : bool or ndarray
+        Whether Q = mu P (the contact is at the limit of friction and slides).
+    dundurs_beta : float or ndarray
+        The size of the normal-tangential coupling neglected (:func:`dundurs_beta`).
+    """
+
+    force: float | np.ndarray
+    mu: float | np.ndarray
+    direction: float | np.ndarray
+    stick_a: float | np.ndarray
+    stick_b: float | np.ndarray
+    slip_area: float | np.ndarray
+    displacement: float | np.ndarray
+    displacement_transverse: float | np.ndarray
+    stiffness: float | np.ndarray
+    no_slip_stiffness: float | np.ndarray
+    sliding: bool | np.ndarray
+    dundurs_beta: float | np.ndarray
+    _a: float | np.ndarray
+    _b: float | np.ndarray
+    _p0: float | np.ndarray
+
+    def traction(self, x, y):
+        """Shear traction along the force at (x, y) in the ellipse frame [Pa].
+
+        mu p0 sqrt(1 - r^2) - mu p0 s sqrt(1 - r^2/s^2), r^2 = (x/a)^2 + (y/b)^2,
+        s = stick_a / a, the second term in the stick ellipse only; 0 outside
+        the contact.  The traction vector is this times the force's unit vector.
+        """
+        x = as_float_array(x, "x")
+        y = as_float_array(y, "y")
+        with np.errstate(divide="ignore", invalid="ignore"):
+            r2 = np.square(x / self._a) + np.square(y / self._b)
+            s = self.stick_a / self._a
+            full = np.sqrt(np.maximum(1.0 - r2, 0.0))
+            stick = np.where(r2 < s * s, s * np.sqrt(np.maximum(1.0 - r2 / (s * s), 0.0)), 0.0)
+            return _out(self.mu * self._p0 * (full - stick))
+
+
+def _broadcast(x, shape):
+    """x as a Python float (0-d) or a read-only view of ``shape`` (no copy)."""
+    if not shape:
+        return _out(x)
+    return x if np.shape(x) == shape else np.broadcast_to(x, shape)
+
+
+def partial_slip(contact, force, mu, direction=0.0) -> Tangential:
+    """The :class:`Tangential` state of ``contact`` under ``force`` [N] (see
+    :meth:`hertz.Contact.tangential`)."""
+    mu = _mu(mu)
+    direction = _direction(direction)
+    load = _require_load(contact, "a tangential force")
+    q = _force_ratio(force, mu, load)
+    along, across = _along(contact, direction, transverse=True)
+    s = np.cbrt(1.0 - q)
+    virgin = _virgin(q, s)  # 1 - s^2
+    reach = 1.5 * (mu * load)  # 3 mu P / 2, times the compliance
+    k = 1.0 / along
+    a, b = contact.a, contact.b
+    shape = broadcast_shape(contact=a, force=q, mu=mu, direction=direction)
+    fields = (np.asarray(force, dtype=np.float64), mu, direction, a * s, b * s,
+              math.pi * a * b * virgin, reach * along * virgin, reach * across * virgin,
+              k * s, k, q == 1.0, dundurs_beta(contact), a, b, contact.p0)
+    fields = [_broadcast(x, shape) for x in fields]
+    if not shape:
+        fields[10] = bool(fields[10])
+    return Tangential(*fields)
+
+
+# ----------------------------------------------------------------------- fretting
+@dataclass(frozen=True, slots=True)
+class FrettingLoop:
+    """The steady hysteresis loop of a tangential force cycling between -Q* and Q*
+    at constant normal load (Mindlin & Deresiewicz 1953, Masing's rule).
+
+    Attributes
+    ----------
+    amplitude : float or ndarray
+        Q* [N], 0 <= Q* <= mu P.
+    displacement_amplitude : float or ndarray
+        delta* [m], the displacement along the force at Q = Q*.
+    energy : float or ndarray
+        Energy dissipated per cycle [J], the loop's area.
+    stiffness : float or ndarray
+        No-slip stiffness k along the force [N/m].
+    mu, load : float or ndarray
+        Coefficient of friction [-] and normal force P [N].
+    """
+
+    amplitude: float | np.ndarray
+    displacement_amplitude: float | np.ndarray
+    energy: float | np.ndarray
+    stiffness: float | np.ndarray
+    mu: float | np.ndarray
+    load: float | np.ndarray
+    _reach: float | np.ndarray  # 3 mu P / (2 k), the displacement where sliding starts
+
+    def _f(self, x):
+        """The virgin curve Q -> displacement [m] for 0 <= x <= mu P."""
+        return self._reach * _virgin(x / (self.mu * self.load))
+
+    def unloading(self, force):
+        """Displacement [m] on the branch from Q* down to -Q*:
+        delta* - 2 f((Q* - Q)/2), for -Q* <= force <= Q* [N]."""
+        force = as_float_array(force, "force")
+        return _out(self.displacement_amplitude - 2.0 * self._f((self.amplitude - force) / 2.0))
+
+    def reloading(self, force):
+        """Displacement [m] on the branch from -Q* up to Q*: -delta* + 2 f((Q* + Q)/2)."""
+        force = as_float_array(force, "force")
+        return _out(-self.displacement_amplitude + 2.0 * self._f((self.amplitude + force) / 2.0))
+
+    def loop(self, points=101):
+        """The closed loop: (force, displacement) [N, m], each of shape (2 points - 1, ...),
+        down the unloading branch from Q* to -Q* and back up the reloading branch."""
+        t = np.linspace(1.0, -1.0, int(points))
+        t = t.reshape((-1,) + (1,) * np.ndim(self.amplitude))
+        down = t * self.amplitude
+        up = -down[1:]
+        return (np.concatenate([down, up]),
+                np.concatenate([self.unloading(down), self.reloading(up)]))
+
+
+def fretting(contact, amplitude, mu, direction=0.0) -> FrettingLoop:
+    """The :class:`FrettingLoop` of ``contact`` (see :meth:`hertz.Contact.fretting`)."""
+    mu = _mu(mu)
+    direction = _direction(direction)
+    load = _require_load(contact, "a tangential force")
+    q = _force_ratio(amplitude, mu, load, "amplitude")
+    along, _ = _along(contact, direction)
+    limit = mu * load
+    amplitude = np.asarray(amplitude, dtype=np.float64)
+    shape = np.broadcast_shapes(np.shape(q), np.shape(along))
+    reach = 1.5 * limit * along
+    fields = (amplitude, reach * _virgin(q), limit * limit * _loop_energy(q) * along,
+              1.0 / along, mu, load, reach)
+    return FrettingLoop(*(_broadcast(x, shape) for x in fields))
+
+
+# ----------------------------------------------------------------------- histories
+def tangential_history(contact, forces, mu, direction=0.0):
+    """Relative tangential displacement [m] along a history of tangential forces.
+
+    Mindlin & Deresiewicz (1953) at constant normal load: Masing's rule with the
+    memory of every reversal point (module docstring of ``hertz._tangential``).
+
+    Parameters
+    ----------
+    contact : Contact
+    forces : array_like, shape (n, ...)
+        The force along ``direction`` [N] at n instants, starting from the
+        unloaded state (Q = 0, displacement 0); negative is the opposite way.
+        |Q| <= mu P throughout.  The trailing axes broadcast with the contact's
+        shape.
+    mu : float or array_like
+        Coefficient of friction [-], > 0.
+    direction : float or array_like
+        Angle of the force's line from the major axis [rad].
+
+    Returns
+    -------
+    ndarray, shape (n, ...)
+        The displacement along the force's line at each instant [m].
+
+    Examples
+    --------
+    >>> import hertz
+    >>> ball = hertz.Body.sphere(0.01, E=210e9, nu=0.3)
+    >>> c = hertz.contact(ball, hertz.Body.plane(E=210e9, nu=0.3), load=100.0)
+    >>> d = hertz.tangential_history(c, [20.0, -10.0, 5.0, -10.0, 20.0], mu=0.3)
+    >>> bool(d[4] == hertz.tangential_history(c, [20.0], mu=0.3)[0])  # memory
+    True
+    >>> bool(d[1] == d[3])  # the small loop -10 -> 5 -> -10 closes
+    True
+    """
+    mu = _mu(mu)
+    direction = _direction(direction)
+    load = _require_load(contact, "a tangential force")
+    forces = as_float_array(forces, "forces")
+    if forces.ndim == 0:
+        raise ValueError("forces must be an array of shape (n, ...) of tangential forces in N")
+    _force_ratio(np.abs(forces), mu, load, "forces")  # |Q| <= mu P
+    along, _ = _along(contact, direction)
+    limit = mu * load
+    shape = np.broadcast_shapes(forces.shape[1:], np.shape(limit), np.shape(along))
+    flat = np.broadcast_to(forces, (forces.shape[0],) + shape).reshape(forces.shape[0], -1)
+    lim = np.broadcast_to(limit, shape).reshape(-1)
+    reach = np.broadcast_to(1.5 * limit * along, shape).reshape(-1)  # 3 mu P / (2 k)
+    out = np.empty_like(flat)
+    engine = _Masing(lim.size, lambda x: reach * _virgin(np.minimum(x / lim, 1.0)))
+    for i in range(flat.shape[0]):
+        out[i] = engine.step(flat[i])
+    return out.reshape((forces.shape[0],) + shape)
+
+
+class _Masing:
+    """Masing's rule with reversal memory, vectorised over N elements, driven by the
+    variable x with the odd skeleton y = sign(x) f(|x|):
+
+    * a reversal of the direction of x pushes the last point (x, y);
+    * the branch from the top reversal (x_r, y_r) is y_r + 2 f((x - x_r)/2) (odd f);
+    * passing the reversal before the top one closes a loop: pop two;
+    * with one reversal left, reaching |x| >= |x_1| rejoins the skeleton: pop it
+      (only while ``virgin``; the spring clears it when a contact slides).
+    """
+
+    def __init__(self, n, f):
+        self.f = f
+        self.x = np.zeros(n)
+        self.y = np.zeros(n)
+        self.sense = np.zeros(n)  # direction of the last move, 0 before the first
+        self.depth = np.zeros(n, dtype=np.intp)
+        self.virgin = np.ones(n, dtype=bool)  # on or inside the skeleton (never slid)
+        self.stack_x = np.zeros((n, 4))
+        self.stack_y = np.zeros((n, 4))
+        self.rows = np.arange(n)
+
+    def _odd(self, x):
+        return np.sign(x) * self.f(np.abs(x))
+
+    def step(self, x):
+        move = np.sign(x - self.x)
+        reverse = (move != 0) & (self.sense != 0) & (move != self.sense)
+        if reverse.any():
+            if self.depth.max() + 1 >= self.stack_x.shape[1]:
+                grow = self.stack_x.shape[1]
+                self.stack_x = np.pad(self.stack_x, ((0, 0), (0, grow)))
+                self.stack_y = np.pad(self.stack_y, ((0, 0), (0, grow)))
+            r = self.rows[reverse]
+            self.stack_x[r, self.depth[r]] = self.x[r]
+            self.stack_y[r, self.depth[r]] = self.y[r]
+            self.depth[r] += 1
+        self.sense = np.where(move != 0, move, self.sense)
+        while True:  # loops closed by this step
+            d = self.depth
+            top = np.maximum(d - 1, 0)
+            below = np.maximum(d - 2, 0)
+            xr1 = self.stack_x[self.rows, top]
+            xr0 = self.stack_x[self.rows, below]
+            close = (d >= 2) & ((x - xr0) * self.sense >= 0) & ((xr0 - xr1) * self.sense > 0)
+            skeleton = (d == 1) & self.virgin & (np.abs(x) >= np.abs(xr1)) & (x * xr1 <= 0)
+            if not (close.any() or skeleton.any()):
+                break
+            self.depth = d - 2 * close - skeleton
+        d = self.depth
+        top = np.maximum(d - 1, 0)
+        xr = self.stack_x[self.rows, top]
+        yr = self.stack_y[self.rows, top]
+        y = np.where(d == 0, self._odd(x), yr + 2.0 * self._odd((x - xr) / 2.0))
+        self.x = np.array(x, dtype=np.float64, copy=True)
+        self.y = y
+        return y
+
+
+def proportional_loading(contact, force, mu, direction=0.0):
+    """Displacement [m] when the tangential and normal forces rise together from zero.
+
+    Mindlin & Deresiewicz (1953), the oblique force of fixed direction: if Q/P
+    stays fixed below mu, the traction is (Q/P) times the pressure everywhere,
+    nothing slips, and the displacement is
+    3 Q / (2 k) with k the no-slip stiffness at the final load (k grows as
+    P^(1/3)): half again the displacement of the same Q applied at full load
+    before slip.  It applies to any monotonic loading with dQ/dP = Q/P < mu
+    constant; Q/P >= mu slides from the start (ValueError).  Two further classic
+    cases need no function: raising P at fixed Q changes nothing tangential (the
+    displacement stays); lowering P at fixed Q gives the Cattaneo-Mindlin state
+    of the current P and Q (:meth:`hertz.Contact.tangential` of the contact at the
+    new load), as long as Q < mu P.
+
+    Parameters
+    ----------
+    contact : Contact
+        The contact at the final normal load P.
+    force : float or array_like
+        The final tangential force Q [N], 0 <= Q < mu P.
+    mu : float or array_like
+        Coefficient of friction [-].
+    direction : float or array_like
+        Angle of the force from the major axis [rad].
+
+    Examples
+    --------
+    >>> import hertz
+    >>> ball = hertz.Body.sphere(0.01, E=210e9, nu=0.3)
+    >>> c = hertz.contact(ball, hertz.Body.plane(E=210e9, nu=0.3), load=100.0)
+    >>> d = hertz.proportional_loading(c, 10.0, mu=0.3)
+    >>> print(f"{d * c.tangential_stiffness() / 10.0:.3f}")
+    1.500
+    """
+    mu = _mu(mu)
+    direction = _direction(direction)
+    load = _require_load(contact, "a tangential force")
+    q = _force_ratio(force, mu, load)
+    if np.any(q >= 1.0):
+        i = first_failure(np.broadcast_to(q < 1.0, np.shape(q)))
+        raise ValueError("force / load must stay below mu for loading without slip (it "
+                         f"slides from the start){'' if not np.ndim(q) else f' at index {i}'}")
+    along, _ = _along(contact, direction)
+    return _out(1.5 * np.asarray(force, dtype=np.float64) * along)
+
+
+class TangentialSpring:
+    """A tangential contact law in the shape a DEM code uses: a displacement increment
+    in, the tangential force out (Mindlin & Deresiewicz at constant normal load).
+
+    Each contact of the batch carries its own state: the force, the displacement and
+    the reversal points remembered (Masing's rule, as :func:`tangential_history`).
+    Where the force reaches mu P the contact slides: the force stays at +-mu P, the
+    memory is cleared, and a reversal starts a Masing branch from the sliding point
+    (it reaches the opposite limit after 2 delta_s more, delta_s = 3 mu P / (2 k)).
+
+    Parameters
+    ----------
+    contact : Contact
+        The contacts (any shape); the normal load is held constant.
+    mu : float or array_like
+        Coefficient of friction [-].
+    direction : float or array_like
+        Angle of the line of the tangential motion from the major axis [rad]
+        (the law is one-dimensional along it).
+
+    Attributes
+    ----------
+    force : ndarray
+        Tangential force along the line [N].
+    displacement : ndarray
+        Accumulated relative displacement along the line [m], slip included.
+    sliding : ndarray of bool
+        Whether the contact slid in the last step.
+
+    Examples
+    --------
+    >>> import hertz
+    >>> ball = hertz.Body.sphere(0.01, E=210e9, nu=0.3)
+    >>> c = hertz.contact(ball, hertz.Body.plane(E=210e9, nu=0.3), load=100.0)
+    >>> spring = hertz.TangentialSpring(c, mu=0.3)
+    >>> f1 = spring.step(1e-9)  # small against 3 mu P / (2 k) = 1.3e-6 m: no slip
+    >>> bool(abs(f1 - c.tangential_stiffness() * 1e-9) < 1e-3 * f1)
+    True
+    >>> float(spring.step(1e-3))  # far: sliding at mu P
+    30.0
+    """
+
+    def __init__(self, contact, mu, direction=0.0):
+        mu = _mu(mu)
+        direction = _direction(direction)
+        load = _require_load(contact, "a tangential spring")
+        along, _ = _along(contact, direction)
+        limit = mu * load
+        self._shape = np.broadcast_shapes(np.shape(limit), np.shape(along))
+        self._limit = np.broadcast_to(limit, self._shape).reshape(-1).copy()
+        reach = np.broadcast_to(1.5 * limit * along, self._shape).reshape(-1).copy()
+        self._reach = reach  # delta_s = 3 mu P / (2 k)
+        lim = self._limit
+        self._engine = _Masing(lim.size, lambda x: lim * _virgin_inverse(x / reach))
+        self._displacement = np.zeros(lim.size)
+        self._force = np.zeros(lim.size)
+        self._sliding = np.zeros(lim.size, dtype=bool)
+
+    def _view(self, x):
+        return _out(x.reshape(self._shape)) if self._shape else x.item()
+
+    @property
+    def force(self):
+        return self._view(self._force)
+
+    @property
+    def displacement(self):
+        return self._view(self._displacement)
+
+    @property
+    def sliding(self):
+        return self._view(self._sliding)
+
+    def step(self, increment):
+        """Apply a displacement increment [m] (broadcast to the contacts); return the
+        new tangential force [N]."""
+        inc = as_float_array(increment, "increment")
+        if not np.all(np.isfinite(inc)):
+            raise error_at("increment", inc, first_failure(np.isfinite(inc)),
+                           "a finite displacement increment in m")
+        inc = np.broadcast_to(inc, self._shape).reshape(-1)
+        self._displacement = self._displacement + inc
+        engine = self._engine
+        force = engine.step(self._displacement)
+        # after sliding, with no reversal remembered, the contact keeps sliding
+        slid = ~engine.virgin & (engine.depth == 0)
+        force = np.where(slid, engine.sense * self._limit, force)
+        # the force reaches the limit of friction: the contact slides, memory is lost
+        over = np.abs(force) >= self._limit
+        if over.any():
+            force = np.where(over, np.sign(force) * self._limit, force)
+            engine.depth[over] = 0
+            engine.virgin[over] = False
+        engine.y = force  # the point a later reversal starts from
+        self._force = force
+        self._sliding = over | slid
+        return self.force
