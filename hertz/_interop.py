@@ -393,7 +393,7 @@ def contact(body1, body2, name, value, angle):
         geometry = _Deferred(geometry.inputs, geometry.shape, wrap_geometry)
     else:
         geometry = wrap_geometry(getattr(result, k) for k in GEOMETRY_UNITS)
-    return Contact(*fields, geometry, (body1.nu, body2.nu))
+    return Contact(*fields, geometry, (body1.nu, body2.nu, body1.E, body2.E))
 
 
 def line_contact(body1, body2, load_per_length):
