@@ -456,7 +456,7 @@ class Contact:
         if _interop.any_foreign(self.a, x, y):
             return _interop.call_method(self, "pressure", (("x", x, "m"), ("y", y, "m")), "Pa")
         x, y = _stress.coordinate(x, "x", "any"), _stress.coordinate(y, "y", "any")
-        with np.errstate(divide="ignore", invalid="ignore"):
+        with np.errstate(divide="ignore", over="ignore", invalid="ignore"):
             return _semi_elliptic(self.p0, np.square(x / self.a) + np.square(y / self.b))
 
     def tangential_stiffness(self, direction=0.0):
@@ -809,7 +809,7 @@ class LineContact:
         if _interop.any_foreign(self.half_width, x):
             return _interop.call_method(self, "pressure", (("x", x, "m"),), "Pa")
         x = _stress.coordinate(x, "x", "any")
-        with np.errstate(divide="ignore", invalid="ignore"):
+        with np.errstate(divide="ignore", over="ignore", invalid="ignore"):
             return _semi_elliptic(self.p0, np.square(x / self.half_width))
 
     def stress(self, x, z, body=1):

@@ -174,11 +174,11 @@ def _unit(registry, unit: str):
 
 def _to_si(quantity, name: str, unit: str):
     """The magnitude of a pint Quantity in the SI ``unit``."""
-    from pint import DimensionalityError
+    from pint import DimensionalityError, OffsetUnitCalculusError
 
     try:
         return quantity.to(_unit(quantity._REGISTRY, unit)).magnitude
-    except DimensionalityError:
+    except (DimensionalityError, OffsetUnitCalculusError):
         raise TypeError(f"{name} must be {_MEASURES[unit]} (a quantity convertible to "
                         f"{unit or 'a plain number'}), got a quantity in {quantity.units}"
                         ) from None

@@ -6,6 +6,7 @@ Internal code receives clean float64 arrays and never re-checks them.
 from __future__ import annotations
 
 import math
+import numbers
 
 import numpy as np
 
@@ -32,6 +33,16 @@ def as_float_array(value, name: str) -> np.ndarray:
         raise TypeError(
             f"{name} must be a real number or an array of them, got {_describe(value, arr)}"
         )
+    if arr.dtype.kind == "f" and arr.dtype.itemsize > 8:  # long double: check the range
+        with np.errstate(over="ignore", under="ignore"):
+            out = arr.astype(np.float64)
+        lost = (np.isfinite(arr) & ~np.isfinite(out)) | ((arr != 0) & (out == 0))
+        if lost.any():
+            i = first_failure(~lost)
+            raise ValueError(f"{name} must be within the range of a double (magnitude "
+                             "at most 1.7976931348623157e308, and 0 or at least 5e-324), got "
+                             f"{arr.reshape(-1)[i]!r}{index_text(arr.shape, i)}")
+        return out
     return arr.astype(np.float64, copy=False)
 
 
@@ -49,14 +60,15 @@ def _from_python_numbers(value, arr: np.ndarray, name: str) -> np.ndarray:
     out = np.empty(arr.shape)
     flat = out.reshape(-1)
     for i, v in enumerate(arr.reshape(-1)):
-        if type(v) is bool or not isinstance(v, (int, float, np.integer, np.floating)):
+        if type(v) is bool or isinstance(v, np.bool_) or not isinstance(v, numbers.Real):
             raise TypeError(
                 f"{name} must be a real number or an array of them, got {_describe(value, arr)}")
         try:
             flat[i] = v
         except OverflowError:
+            shown = f"the int {_int_text(v)}" if isinstance(v, int) else f"a {type(v).__name__}"
             raise ValueError(f"{name} must be within the range of a double (magnitude at most "
-                             f"1.7976931348623157e308), got the int {_int_text(v)}"
+                             f"1.7976931348623157e308), got {shown}"
                              f"{index_text(arr.shape, i)}") from None
     return out
 

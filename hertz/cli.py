@@ -275,6 +275,13 @@ def _kind(value) -> str:
     return {list: "an array", dict: "a table"}.get(type(value), type(value).__name__)
 
 
+def _printable(text: str) -> str:
+    """``text`` with control and other non-printing characters written as escapes
+    (``\\x1b``), so that a scene name cannot move the cursor or recolour a terminal."""
+    return "".join(ch if ch.isprintable() else ch.encode("unicode_escape").decode("ascii")
+                   for ch in text)
+
+
 def _show(value, limit: int = 80) -> str:
     """repr(value), shortened; never an exception (deep nesting, huge integers)."""
     try:
@@ -435,7 +442,7 @@ def _table(scene, body1, body2, f) -> str:
         ("rho_x, rho_y", f"{_g(f['rho_x'])}, {_g(f['rho_y'])} 1/m"),
         ("elliptic m, K(m), E(m)", f"{_g(f['m'])}, {_g(f['K'])}, {_g(f['E'])}"),
     ]
-    lines = [f"Hertz point contact: {scene['name']}"]
+    lines = [f"Hertz point contact: {_printable(scene['name'])}"]
     for i, b in ((1, body1), (2, body2)):
         lines.append(f"  body {i}: Rx = {_radius_text(b.Rx)}, Ry = {_radius_text(b.Ry)}, "
                      f"E = {_si(b.E, 'Pa')}, nu = {b.nu:g}")
