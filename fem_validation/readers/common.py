@@ -143,12 +143,18 @@ def finish(points, pressure, normal_force, force, symmetry, frame, triangles=Non
     if not (weight > 0).any():
         raise ResultError(f"{source}: the contact is empty: no node carries a positive "
                           f"contact pressure or force")
-    if symmetry is None:
-        probe = frame if frame is not None else find_frame(pts, weight, True, source=source)
-        symmetry = detect_symmetry(probe.to_frame(pts)[:, :2], weight)
-    if symmetry not in MULTIPLICITY:
+    if symmetry is not None and symmetry not in MULTIPLICITY:
         raise ResultError(f"{source}: symmetry must be one of {', '.join(MULTIPLICITY)}, "
                           f"got {symmetry!r}")
+    probe = frame if frame is not None else find_frame(pts, weight, True, source=source)
+    detected = detect_symmetry(probe.to_frame(pts)[:, :2], weight)
+    if symmetry is None:
+        symmetry = detected
+    elif MULTIPLICITY[detected] > MULTIPLICITY[symmetry]:
+        # Pressed on one side of a plane through its peak: no whole contact looks so.
+        raise ResultError(f"{source}: symmetry {symmetry!r} was given, but the file holds a "
+                          f"{detected} model (every node on one side of the symmetry "
+                          f"plane(s), the largest pressure on it): give --symmetry {detected}")
     if frame is None:
         frame = find_frame(pts, weight, symmetry != "whole", source=source)
     if force is None:

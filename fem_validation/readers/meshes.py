@@ -21,6 +21,8 @@ split into four linear triangles through their mid-side nodes.
 
 from __future__ import annotations
 
+import contextlib
+import io
 from pathlib import Path
 
 import numpy as np
@@ -168,10 +170,12 @@ def read_mesh(path, *, units: str | None = None, symmetry: str | None = None,
     src = str(path)
     fields = dict(fields or {})
     units = units or "SI"
-    try:
-        mesh = meshio.read(path)
-    except Exception as exc:  # meshio raises many types for files it cannot read
-        raise ResultError(f"{src}: meshio cannot read it: {exc}"[:400]) from None
+    try:  # meshio prints its complaints and may call sys.exit: keep it quiet, catch both
+        with contextlib.redirect_stdout(io.StringIO()), contextlib.redirect_stderr(io.StringIO()):
+            mesh = meshio.read(path)
+    except (Exception, SystemExit) as exc:  # meshio raises many types for bad files
+        reason = str(exc) if not isinstance(exc, SystemExit) else "not a valid file"
+        raise ResultError(f"{src}: meshio cannot read it: {reason}"[:400]) from None
     length, force_unit, pressure_unit = units_of(units, f"{src}: ")
     points = np.asarray(mesh.points, dtype=float)
     if points.shape[1] == 2:
