@@ -319,6 +319,27 @@ def test_csv_round_trip_in_mm(ball, tmp_path):
         assert g1.metrics[k] == pytest.approx(g0.metrics[k], abs=1e-9)
 
 
+def test_frame_is_found_for_a_tilted_offset_surface(ball, tmp_path):
+    """The ball's whole contact tilted by 30 degrees about x and moved: the frame found
+    (normal by PCA, origin at the pressure's centroid) grades it as the flat original."""
+    scene, _ = ball
+    c, r = synthetic(scene, load=100.0, h_over_b=0.05)
+    t = math.radians(30.0)
+    rot = np.array([[1.0, 0.0, 0.0], [0.0, math.cos(t), -math.sin(t)],
+                    [0.0, math.sin(t), math.cos(t)]])
+    moved = r.points @ rot.T + [0.02, -0.01, 0.005]
+    path = tmp_path / "tilted.csv"
+    path.write_text("# force = 100\nx,y,z,p\n" + "".join(
+        f"{x!r},{y!r},{z!r},{q!r}\n" for (x, y, z), q in zip(moved.tolist(), r.pressure.tolist(),
+                                                          strict=True)))
+    res = read_result(path)
+    assert res.symmetry == "whole"
+    np.testing.assert_allclose(res.frame.normal, rot[:, 2], atol=1e-9)
+    g0, g1 = fg.grade(r, scene), fg.grade(res, scene)
+    for k in ("a_rel_err", "b_rel_err", "p0_rel_err"):
+        assert g1.metrics[k] == pytest.approx(g0.metrics[k], abs=1e-6)
+
+
 def test_csv_bad_input(ball, tmp_path):
     scene, _ = ball
     c, r = synthetic(scene, quarter=True, load=100.0)

@@ -33,9 +33,10 @@ from .common import (
     PRESSURE_NAMES,
     REACTION_NAMES,
     STRESS_NAMES,
-    find_frame,
+    detect_symmetry,
     finish,
     force_from_reaction,
+    resolve_frame,
     units_of,
 )
 
@@ -214,14 +215,12 @@ def read_mesh(path, *, units: str | None = None, symmetry: str | None = None,
     p_s = None if pressure is None else pressure[nodes] * pressure_unit
     f_s = None if normal_force is None else normal_force[nodes] * force_unit
     w_s = weight[nodes]
-    if frame is None:
+    if not isinstance(frame, ContactFrame):
         sym = symmetry
         if sym is None:
-            from .common import detect_symmetry
-
-            probe = find_frame(surface, w_s, True, source=src)
+            probe = resolve_frame(frame, surface, w_s, True, src)
             sym = detect_symmetry(probe.to_frame(surface)[:, :2], w_s)
-        frame = find_frame(surface, w_s, sym != "whole", source=src)
+        frame = resolve_frame(frame, surface, w_s, sym != "whole", src)
         symmetry = sym
     if force is None:
         rkey, rf = _field(mesh.point_data, REACTION_NAMES, "reaction", fields.get("reaction"),
