@@ -367,10 +367,14 @@ def surface_mesh_file(path, r, fields, fmt=None):
     return path
 
 
-@pytest.mark.parametrize("suffix", [".vtu", ".xdmf"])
+@pytest.mark.parametrize("suffix", [".vtu", ".xdmf", ".med", ".exo"])
 def test_meshio_round_trip(ball, tmp_path, suffix):
-    """A whole contact surface with CPRESS in MPa, in mm, through VTU and XDMF: the same
-    grade as the data in memory (the force given, as a deck's printed reaction)."""
+    """A whole contact surface with CPRESS in MPa, in mm, through VTU, XDMF, MED and Exodus:
+    the same grade as the data in memory (the force given, as a deck's printed reaction)."""
+    if suffix == ".exo":
+        pytest.importorskip("netCDF4", reason="meshio writes Exodus with netCDF4")
+    if suffix in (".xdmf", ".med"):
+        pytest.importorskip("h5py", reason="meshio writes XDMF and MED with h5py")
     scene, _ = ball
     c, r = synthetic(scene, load=100.0, h_over_b=0.05)
     path = surface_mesh_file(tmp_path / f"s{suffix}",
