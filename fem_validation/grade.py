@@ -125,11 +125,11 @@ METRICS = {
 
 #: The metrics of a force-approach curve (:func:`grade_force_approach`).
 CURVE_METRICS = {
-    "force_rel_err_max": ("force, largest", "largest |F - F_Hertz(delta)| / F_Hertz(delta) over "
-                                            "the curve (signed)"),
+    "force_rel_err_max": ("force, largest", "(F - F_Hertz(delta)) / F_Hertz(delta) of the "
+                                            "largest magnitude over the curve"),
     "force_rel_err_rms": ("force, RMS", "RMS of (F - F_Hertz(delta)) / F_Hertz(delta)"),
     "exponent_err": ("exponent", "slope of log F against log delta (least squares) minus "
-                                 "Hertz's 3/2"),
+                                 "Hertz's 3/2 (a number, not a relative error)"),
 }
 #: Default tolerances of a force-approach curve: Hertz's law in closed form, so a DEM
 #: code's single contact should follow it to its own rounding; 1% leaves room for an

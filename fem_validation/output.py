@@ -245,6 +245,8 @@ def _fmt(name: str, value: float) -> str:
         return "-"
     if name == "angle_err_deg":
         return f"{value:+.2f} deg"
+    if name == "exponent_err":
+        return f"{value:+.4f}"
     if name.startswith(("rms_", "stress_rms_", "force_rel_err_rms")):
         return f"{value:.2%}"
     return f"{value:+.2%}"
@@ -253,6 +255,8 @@ def _fmt(name: str, value: float) -> str:
 def _tol(name: str, tol) -> str:
     if tol is None:
         return "-"
+    if name == "exponent_err":
+        return f"{tol:.4f}"
     return f"{tol:.2f} deg" if name == "angle_err_deg" else f"{tol:.2%}"
 
 
@@ -262,6 +266,7 @@ def checks_table(checks, metrics_doc) -> list[str]:
     for ch in checks:
         header, meaning = metrics_doc.get(ch.name, (ch.name, ""))
         status = ch.status.upper() if ch.passed is not None else ch.status
+        meaning = meaning.replace("|", "\\|")
         lines.append(f"| {header} (`{ch.name}`) | {meaning} | {_fmt(ch.name, ch.value)} | "
                      f"{_tol(ch.name, ch.tolerance)} | {status} |")
     return lines
@@ -299,7 +304,9 @@ def grade_markdown(g, command: str = "") -> str:
                   f"{method}), "
                   f"p0 {g.fem['p0']:.6g} Pa (fit of p^2 above 20% of the largest pressure), "
                   f"largest nodal pressure {g.fem['peak_nodal_pressure']:.6g} Pa"]
-    lines += ["", "## Sign convention", "", SIGN_CONVENTION, "",
+    convention = ("Errors are (result - Hertz) / Hertz, Hertz's force taken at the same "
+                  "approach." if curve else SIGN_CONVENTION)
+    lines += ["", "## Sign convention", "", convention, "",
               "## Checks", "",
               "Status: PASS / FAIL against the tolerance (|value| at most the tolerance); "
               "*information*: reported, not checked (the edge of the pressed region moves "
@@ -367,7 +374,7 @@ def plot_grade(g, path: Path) -> Path:
                   f"{g.semi_axes}), p0 = {g.fem['p0']:.4g} Pa (p^2 fit)")
     for ax in axes[:2]:
         ax.grid(True, alpha=0.3)
-        ax.legend(fontsize=7, loc="upper right")
+        ax.legend(fontsize=7, loc="best" if curve else "upper right")
     ax = axes[2]
     names = [c.name for c in checked]
     ratio = [abs(c.value) / c.tolerance for c in checked]
@@ -383,7 +390,8 @@ def plot_grade(g, path: Path) -> Path:
     fig.suptitle(f"{g.source or g.scene} against Hertz ({g.scene}): "
                  f"{'PASSED' if g.passed else 'FAILED'}; force {g.force:.5g} N"
                  f"{'' if curve else f' (whole model, {g.symmetry} model)'}.  "
-                 f"Errors: (result - Hertz) / Hertz at matched force.{values}", fontsize=9)
+                 f"Errors: (result - Hertz) / Hertz at "
+                 f"{'the same approach' if curve else 'matched force'}.{values}", fontsize=9)
     fig.tight_layout()
     fig.savefig(path, dpi=110)
     plt.close(fig)
