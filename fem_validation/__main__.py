@@ -7,6 +7,7 @@
     python -m fem_validation --curved --out DIR    # a ball on a plane and in a groove
     python -m fem_validation --curved --level 2 --a-over-r 0.01 0.2 --out DIR
     python -m fem_validation --curved --levels 3 4 --out DIR  # two levels, one table
+    python -m fem_validation deck --scene FILE.toml --format calculix --out DIR
 
 Writes DIR/report.json, DIR/report.md, <scene>_body1.vtu, <scene>_body2.vtu and
 <scene>_pressure.png per scene (a study writes study.json, study.md and
@@ -102,8 +103,26 @@ def _parser() -> argparse.ArgumentParser:
     return p
 
 
+def _deck(argv: list[str]) -> int:
+    """``python -m fem_validation deck ...``: a benchmark deck for another code."""
+    from . import decks
+
+    p = argparse.ArgumentParser(prog="python -m fem_validation deck",
+                                description="Write a Hertz benchmark as input for another "
+                                            "finite-element code (fem_validation.decks).")
+    decks.add_arguments(p)
+    args = p.parse_args(argv[1:])
+    try:
+        return decks.run(args, command=" ".join(["python -m fem_validation", *argv]))
+    except (FEMValidationError, ValueError, OSError) as exc:
+        print(f"fem_validation: error: {exc}", file=sys.stderr)
+        return 2
+
+
 def main(argv=None) -> int:
     argv = sys.argv[1:] if argv is None else list(argv)
+    if argv[:1] == ["deck"]:
+        return _deck(argv)
     args = _parser().parse_args(argv)
     logging.basicConfig(level=logging.WARNING if args.quiet else logging.INFO,
                         format="%(asctime)s %(message)s", datefmt="%H:%M:%S")
