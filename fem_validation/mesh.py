@@ -27,6 +27,7 @@ import numpy as np
 from skfem import MeshTet
 
 from .errors import FEMValidationError
+from .grade import lumped_area
 from .scenes import Scene
 
 log = logging.getLogger("fem_validation")
@@ -340,20 +341,3 @@ def _body(coords: np.ndarray, numbering: _Numbering, tets: np.ndarray) -> MeshTe
     p = coords[numbering.tags]
     t = positively_oriented(p, numbering(tets))
     return MeshTet(np.ascontiguousarray(p.T), np.ascontiguousarray(t.T))
-
-
-def lumped_area(xy: np.ndarray, tri: np.ndarray) -> np.ndarray:
-    """Each node's third of the area of its triangles (the P1 lumped face mass) [m**2].
-
-    Parameters
-    ----------
-    xy : ndarray, shape (n, 2)
-        Node coordinates [m].
-    tri : ndarray of int, shape (m, 3)
-        Triangles as indices into ``xy``.
-    """
-    d1, d2 = xy[tri[:, 1]] - xy[tri[:, 0]], xy[tri[:, 2]] - xy[tri[:, 0]]
-    tri_area = 0.5 * np.abs(d1[:, 0] * d2[:, 1] - d1[:, 1] * d2[:, 0])
-    area = np.zeros(len(xy))
-    np.add.at(area, tri.ravel(), np.repeat(tri_area / 3, 3))
-    return area

@@ -1,0 +1,855 @@
+"""The one grading path: a :class:`~fem_validation.result.ContactResult` against Hertz.
+
+Every source (our block and curved-body solvers, readers of other codes' files)
+fills a ContactResult; :func:`grade` turns it into a :class:`Grade`: metrics
+against ``hertz.contact`` at the force the result reached, one :class:`Check`
+per metric with a tolerance, and pass/fail.  It never imports a solver.
+
+Method (stated in every report):
+
+* **Force**: the result's total normal force of the whole contact, P; Hertz is
+  evaluated at that P ("matched force").  Where only pressures are given, their
+  integral (nodal pressure times the lumped area of the surface triangles, times
+  the symmetry's multiplicity) is checked against P (``pressure_integral``).
+* **Semi-axes, two ways**.  *Moments*: the second moments of the nodal normal
+  forces f_i, M = sum f_i (x_i, y_i)^T (x_i, y_i) / sum f_i, which for Hertz's
+  pressure are diag(a**2, b**2)/5 in the ellipse's frame, so a, b = sqrt(5
+  eig(M)); exact for a penalty model whose nodal forces are what it solved for,
+  biased where a code spreads pressure past the edge of contact (CalculiX:
+  +0.6 to +1.7%).  *Fit*: a least-squares fit of p**2 = c0 - (x, y) Q (x, y)^T
+  to the nodal pressures above FIT_THRESHOLD max(p); the spread edge hardly
+  moves it (CalculiX within 0.4%).  ``semi_axes="auto"`` takes the moments
+  where nodal forces are given and the fit where only pressures are.
+* **Peak pressure**: p0 = sqrt(c0) of the fit; the largest nodal pressure is
+  reported beside it.
+* **Edge of contact** (information, not a check): an ellipse through the
+  midpoints of the surface edges joining a node in contact and one out of it
+  (the code's contact status, else p > 0).  Codes that smear the pressure put
+  it 6-12% outside Hertz's ellipse.
+* **Profiles**: the nodal pressure interpolated linearly on the surface
+  triangles along Hertz's major and minor axes out to PROFILE_EXTENT semi-axes;
+  the RMS of its difference from Hertz's pressure, over p0.
+* **Orientation**: the major axis against Hertz's, whole models only (a
+  symmetric model has its axes by construction).
+* **Approach**, where the result gives one: against Hertz's delta at P.
+* **Stresses**, per body given: the von Mises stress at the nodes on the axis,
+  the vertex of a least-squares parabola through the PEAK_POINTS nodes around
+  the largest, against ``Contact.subsurface(body)`` (value and depth); and the
+  nodal stress interpolated in the tetrahedra at the points of
+  :func:`field_points` against ``Contact.stress``: the RMS over the points and
+  the six components, over p0.  The headline values are the body with the
+  larger |error|.
+
+Errors are (result - Hertz) / Hertz.
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Callable, Mapping
+from dataclasses import dataclass, field
+from types import SimpleNamespace
+
+import numpy as np
+
+from .elasticity import von_mises
+from .result import ContactResult, ResultError
+
+PROFILE_EXTENT = 1.2  # profiles run to 1.2 semi-axes
+FIT_THRESHOLD = 0.2  # fit on nodes with p > 0.2 max(p)
+#: Points of the least-squares parabola through the nodal von Mises stresses on the axis.
+PEAK_POINTS = 5
+#: The stress field is sampled at FIELD_POINTS depths, FIELD_DEPTH b / FIELD_POINTS to
+#: FIELD_DEPTH b, and FIELD_LATERAL positions from the axis out to FIELD_EXTENT semi-axes
+#: (on each side of it where the model holds both).
+FIELD_DEPTH = 3.0
+FIELD_POINTS = 60
+FIELD_EXTENT = 1.5
+FIELD_LATERAL = 31
+#: The sets of sample points of the stress field.
+FIELD_SETS = ("axis", "major_plane", "minor_plane")
+
+#: Default tolerances of :func:`grade` (|value| at most this), from what converged models
+#: reach: our blocks at level 4 are within 0.25% in a, b, p0 (README), CalculiX 2.20 on a
+#: sphere on a block (REFERENCES.md) within 0.4% in a and b from the p^2 fit, p0 -0.8% to
+#: -1.15% (12.8k to 57.9k nodes), profile RMS 1.3-2.8% of p0, pressure integral +0.65%
+#: against the reaction, the slave body's von Mises maximum 3.1-3.6% low at every mesh
+#: size.  Override per call (``tolerances``) or on the command line (--tolerance NAME=VALUE).
+DEFAULT_TOLERANCES = {
+    "a_rel_err": 0.01, "b_rel_err": 0.01, "p0_rel_err": 0.02,
+    "rms_major": 0.04, "rms_minor": 0.04, "pressure_integral_rel_err": 0.02,
+    "angle_err_deg": 1.0, "approach_rel_err": 0.02,
+    "von_mises_rel_err": 0.05, "z_von_mises_rel_err": 0.10,
+    "stress_rms_axis": 0.03, "stress_rms_major_plane": 0.03, "stress_rms_minor_plane": 0.03,
+}
+
+#: Every metric: (short header, meaning).  Units: relative errors are fractions
+#: ((result - Hertz) / Hertz); RMS values are fractions of Hertz's p0; angles in degrees.
+METRICS = {
+    "a_rel_err": ("a", "semi-major axis (moments of the nodal forces, or the p^2 fit: "
+                       "see semi_axes)"),
+    "b_rel_err": ("b", "semi-minor axis (as a)"),
+    "p0_rel_err": ("p0 (fit)", "peak pressure of the least-squares fit of p^2"),
+    "peak_nodal_rel_err": ("peak node", "largest nodal pressure"),
+    "rms_major": ("RMS major", "RMS of (pressure - Hertz) along the major axis to "
+                               f"{PROFILE_EXTENT} a, over p0"),
+    "rms_minor": ("RMS minor", f"as RMS major, along the minor axis to {PROFILE_EXTENT} b"),
+    "a_moments_rel_err": ("a (moments)", "semi-major axis from the second moments of the "
+                                         "nodal forces"),
+    "b_moments_rel_err": ("b (moments)", "semi-minor axis from the moments"),
+    "a_fit_rel_err": ("a (fit)", "semi-major axis of the p^2 fit"),
+    "b_fit_rel_err": ("b (fit)", "semi-minor axis of the p^2 fit"),
+    "edge_a_rel_err": ("edge a", "semi-major axis of the ellipse through the edge of the "
+                                 "contact status (information)"),
+    "edge_b_rel_err": ("edge b", "semi-minor axis of the edge ellipse (information)"),
+    "pressure_integral_rel_err": ("p integral", "integral of the nodal pressure over the "
+                                                "surface against the force"),
+    "reaction_rel_err": ("reaction", "force over the independently reported reaction, "
+                                     "minus 1"),
+    "angle_err_deg": ("axis angle [deg]", "major axis against Hertz's (whole models)"),
+    "approach_rel_err": ("approach", "approach against Hertz's delta at the force"),
+    "von_mises_rel_err": ("VM max", "largest von Mises stress on the axis (worse body)"),
+    "z_von_mises_rel_err": ("VM depth", "its depth (worse body)"),
+    "stress_rms_axis": ("stress RMS axis", "RMS of the six stress components' difference on "
+                                           "the axis, over p0 (worse body)"),
+    "stress_rms_major_plane": ("RMS major plane", "as stress RMS axis, in the plane through "
+                                                  "the major axis"),
+    "stress_rms_minor_plane": ("RMS minor plane", "as stress RMS axis, in the plane through "
+                                                  "the minor axis"),
+}
+
+
+@dataclass(frozen=True)
+class Check:
+    """One metric against its tolerance.
+
+    Attributes
+    ----------
+    name : str
+        The metric (a key of :data:`METRICS`).
+    value : float
+        Its value (NaN where the result does not allow it).
+    tolerance : float or None
+        Largest allowed |value|; None where the metric is not checked.
+    status : {"pass", "fail", "by construction", "information", "not available"}
+    """
+
+    name: str
+    value: float
+    tolerance: float | None
+    status: str
+
+    @property
+    def passed(self) -> bool | None:
+        """True or False for a checked metric, None otherwise."""
+        return {"pass": True, "fail": False}.get(self.status)
+
+    def to_dict(self) -> dict:
+        return {"name": self.name, "value": nan_to_none(self.value),
+                "tolerance": self.tolerance, "pass": self.passed, "status": self.status,
+                "meaning": METRICS.get(self.name, ("", ""))[1]}
+
+
+@dataclass(frozen=True)
+class Grade:
+    """A contact result graded against Hertz at the force it reached.
+
+    Attributes
+    ----------
+    scene, source : what was graded
+    force : float
+        Total normal force of the whole contact [N] (Hertz is evaluated there).
+    symmetry : str
+    semi_axes : {"moments", "fit"}
+        Where a_rel_err and b_rel_err come from.
+    metrics : dict
+        Every metric of :data:`METRICS` (NaN where not available).
+    checks : tuple of Check
+        One per metric, with its tolerance and status.
+    passed : bool
+        Every checked metric within its tolerance.
+    hertz, fem : dict
+        Hertz's and the result's a, b, p0, delta [m, Pa], fits and edge.
+    profiles : dict
+        ``{"major"|"minor": {"s", "fem", "hertz", "rms"}}`` (arrays, [m], [Pa]).
+    stress : dict
+        Per body given (``"body1"``, ``"body2"``): the von Mises maxima and depths
+        (result and Hertz), their errors, the field RMS per set.
+    axis_stress : dict
+        Per body: ``{"depth": (n,) [m], "stress": (n, 3, 3) [Pa]}`` on the axis, in
+        the ellipse frame (x major, y minor, z depth into the body).
+    details : dict
+        The result's details.
+    """
+
+    scene: str
+    source: str
+    force: float
+    symmetry: str
+    semi_axes: str
+    metrics: dict
+    checks: tuple
+    passed: bool
+    hertz: dict = field(default_factory=dict)
+    fem: dict = field(default_factory=dict)
+    profiles: dict = field(default_factory=dict, repr=False)
+    stress: dict = field(default_factory=dict)
+    axis_stress: dict = field(default_factory=dict, repr=False)
+    details: dict = field(default_factory=dict)
+
+    def __getattr__(self, name):
+        metrics = self.__dict__.get("metrics", {})
+        if name in metrics:
+            return metrics[name]
+        raise AttributeError(f"{type(self).__name__} has no attribute {name!r}")
+
+    def check(self, name: str) -> Check:
+        """The check of metric ``name``."""
+        return next(c for c in self.checks if c.name == name)
+
+    @property
+    def failed(self) -> list[str]:
+        """Messages for the checks that failed (empty if it passed)."""
+        return [f"{self.scene}: |{c.name}| = {abs(c.value):.3g} > {c.tolerance:.3g}"
+                for c in self.checks if c.status == "fail"]
+
+    def to_dict(self) -> dict:
+        """grade.json: force, the metrics at the top level, passed, checks, details."""
+        return nan_to_none({
+            "scene": self.scene, "source": self.source, "force": self.force,
+            "symmetry": self.symmetry, "semi_axes": self.semi_axes, **self.metrics,
+            "passed": self.passed, "checks": [c.to_dict() for c in self.checks],
+            "hertz": self.hertz, "fem": self.fem, "stress": self.stress,
+            "details": self.details})
+
+
+def nan_to_none(value):
+    """A report row for strict JSON: NaN as None, numpy scalars and arrays as Python values,
+    through dicts, lists and tuples."""
+    if isinstance(value, dict):
+        return {k: nan_to_none(v) for k, v in value.items()}
+    if isinstance(value, list | tuple):
+        return [nan_to_none(v) for v in value]
+    if isinstance(value, np.ndarray):
+        return nan_to_none(value.tolist())
+    if isinstance(value, float | np.floating):
+        return None if math.isnan(value) else float(value)
+    if isinstance(value, np.integer):
+        return int(value)
+    if isinstance(value, np.bool_):
+        return bool(value)
+    return value
+
+
+# --- the pieces -------------------------------------------------------------------------
+
+def _axis_angle(v: np.ndarray, major: int) -> float:
+    """Angle of eigenvector ``major`` from the x axis, in (-90, 90] degrees."""
+    angle = math.degrees(math.atan2(v[1, major], v[0, major]))
+    return angle - 180 if angle > 90 else angle + 180 if angle <= -90 else angle
+
+
+def moment_ellipse(xy: np.ndarray, force: np.ndarray, quarter: bool) -> dict:
+    """Semi-axes a >= b and major-axis angle from the second moments of nodal forces.
+
+    Parameters
+    ----------
+    xy : ndarray, shape (n, 2)
+        Positions [m].
+    force : ndarray, shape (n,)
+        Nodal forces [N] (any consistent unit).
+    quarter : bool
+        The forces are those of a symmetric (quarter or half) model: the mixed
+        moment of the whole contact is zero by symmetry.
+
+    Returns
+    -------
+    dict
+        a, b [m] and major_axis_angle_deg.
+    """
+    total = force.sum()
+    mxx, myy = (force * xy[:, 0] ** 2).sum(), (force * xy[:, 1] ** 2).sum()
+    mxy = 0.0 if quarter else (force * xy[:, 0] * xy[:, 1]).sum()
+    w, v = np.linalg.eigh(np.array([[mxx, mxy], [mxy, myy]]) / total)
+    return {"a": math.sqrt(5 * w[1]), "b": math.sqrt(max(5 * w[0], 0.0)),
+            "major_axis_angle_deg": _axis_angle(v, 1)}
+
+
+def fit_ellipse(xy: np.ndarray, p: np.ndarray) -> dict:
+    """Least-squares fit of p**2 = c0 - (x, y) Q (x, y)^T on nodes above FIT_THRESHOLD max(p).
+
+    Returns p0, the semi-axes a >= b and the major axis's angle from the x axis
+    in (-90, 90] degrees (NaN semi-axes where the fit is not an ellipse).
+    """
+    sel = p > FIT_THRESHOLD * p.max()
+    x, y = xy[sel, 0], xy[sel, 1]
+    design = np.column_stack([np.ones(sel.sum()), -x * x, -x * y, -y * y])
+    (c0, qxx, qxy, qyy), *_ = np.linalg.lstsq(design, p[sel] ** 2, rcond=None)
+    w, v = np.linalg.eigh(np.array([[qxx, qxy / 2], [qxy / 2, qyy]]))
+    ok = c0 > 0 and w[0] > 0
+    return {"p0": math.sqrt(c0) if c0 > 0 else math.nan,
+            "a": math.sqrt(c0 / w[0]) if ok else math.nan,
+            "b": math.sqrt(c0 / w[1]) if ok else math.nan,
+            "major_axis_angle_deg": _axis_angle(v, 0), "fit_nodes": int(sel.sum())}
+
+
+def active_edge_points(xy: np.ndarray, tri: np.ndarray, active: np.ndarray) -> np.ndarray:
+    """Midpoints of the surface's edges that join an active and an inactive node, (k, 2) [m]."""
+    edges = np.sort(np.concatenate([tri[:, [0, 1]], tri[:, [1, 2]], tri[:, [2, 0]]]), axis=1)
+    edges = np.unique(edges, axis=0)
+    cut = edges[active[edges[:, 0]] != active[edges[:, 1]]]
+    return 0.5 * (xy[cut[:, 0]] + xy[cut[:, 1]])
+
+
+def edge_ellipse(points: np.ndarray, quarter: bool) -> dict:
+    """Ellipse through points (k, 2) centred at the origin, by least squares.
+
+    Fits u x**2 + v x y + w y**2 = 1 (v = 0 for a symmetric model).
+
+    Returns
+    -------
+    dict
+        a >= b [m], major_axis_angle_deg and the number of points.
+
+    Raises
+    ------
+    ValueError
+        If fewer than 3 points are given or the fit is not an ellipse.
+    """
+    if len(points) < 3:
+        raise ValueError(f"points must hold 3 or more points, got {len(points)}")
+    x, y = points[:, 0], points[:, 1]
+    cols = [x * x, y * y] if quarter else [x * x, y * y, x * y]
+    coef, *_ = np.linalg.lstsq(np.column_stack(cols), np.ones(len(x)), rcond=None)
+    u, w = coef[0], coef[1]
+    v = 0.0 if quarter else coef[2]
+    eig, vec = np.linalg.eigh(np.array([[u, v / 2], [v / 2, w]]))
+    if not eig[0] > 0:
+        raise ValueError(f"the points do not lie on an ellipse (quadratic form {coef})")
+    return {"a": 1 / math.sqrt(eig[0]), "b": 1 / math.sqrt(eig[1]),
+            "major_axis_angle_deg": _axis_angle(vec, 0), "points": len(points)}
+
+
+def lumped_area(xy: np.ndarray, tri: np.ndarray) -> np.ndarray:
+    """Each node's third of the area of its triangles (the P1 lumped face mass) [m**2].
+
+    Parameters
+    ----------
+    xy : ndarray, shape (n, 2)
+        Node coordinates [m].
+    tri : ndarray of int, shape (m, 3)
+        Triangles as indices into ``xy``.
+    """
+    d1, d2 = xy[tri[:, 1]] - xy[tri[:, 0]], xy[tri[:, 2]] - xy[tri[:, 0]]
+    tri_area = 0.5 * np.abs(d1[:, 0] * d2[:, 1] - d1[:, 1] * d2[:, 0])
+    area = np.zeros(len(xy))
+    np.add.at(area, tri.ravel(), np.repeat(tri_area / 3, 3))
+    return area
+
+
+def surface_triangles(xy: np.ndarray) -> np.ndarray:
+    """A Delaunay triangulation of points (n, 2) in the contact plane, (m, 3).
+
+    For results that give no surface triangles.  Slivers along the convex hull
+    (aspect ratio above 50) are dropped: they join nodes that are not neighbours
+    on a surface whose outline is not convex.
+    """
+    from scipy.spatial import Delaunay
+
+    tri = Delaunay(xy).simplices
+    p = xy[tri]
+    e = np.linalg.norm(p - np.roll(p, 1, axis=1), axis=2)
+    d1, d2 = p[:, 1] - p[:, 0], p[:, 2] - p[:, 0]
+    area = 0.5 * np.abs(d1[:, 0] * d2[:, 1] - d1[:, 1] * d2[:, 0])
+    keep = area > e.max(axis=1) ** 2 / 50 / 2
+    return tri[keep]
+
+
+def interpolate_on_face(xy: np.ndarray, tri: np.ndarray, values: np.ndarray,
+                        points: np.ndarray) -> np.ndarray:
+    """Piecewise-linear interpolation on the triangulated contact face (NaN outside)."""
+    a, b, c = xy[tri[:, 0]], xy[tri[:, 1]], xy[tri[:, 2]]
+    det = (b[:, 0] - a[:, 0]) * (c[:, 1] - a[:, 1]) - (c[:, 0] - a[:, 0]) * (b[:, 1] - a[:, 1])
+    out = np.full(len(points), np.nan)
+    for i, q in enumerate(points):
+        l1 = ((q[0] - a[:, 0]) * (c[:, 1] - a[:, 1]) - (c[:, 0] - a[:, 0]) * (q[1] - a[:, 1])) / det
+        l2 = ((b[:, 0] - a[:, 0]) * (q[1] - a[:, 1]) - (q[0] - a[:, 0]) * (b[:, 1] - a[:, 1])) / det
+        inside = np.nonzero((l1 >= -1e-12) & (l2 >= -1e-12) & (l1 + l2 <= 1 + 1e-12))[0]
+        if inside.size:
+            t = inside[0]
+            out[i] = ((1 - l1[t] - l2[t]) * values[tri[t, 0]] + l1[t] * values[tri[t, 1]]
+                      + l2[t] * values[tri[t, 2]])
+    return out
+
+
+def _mirror_axes(symmetry: str, xy: np.ndarray) -> tuple[bool, bool]:
+    """Which in-plane coordinates the model holds only >= 0 of: (x, y)."""
+    if symmetry == "quarter":
+        return True, True
+    if symmetry == "half":
+        scale = np.abs(xy).max()
+        return bool(xy[:, 0].min() >= -1e-9 * scale), not xy[:, 0].min() >= -1e-9 * scale
+    return False, False
+
+
+def pressure_profiles(c, xy: np.ndarray, tri: np.ndarray, pressure: np.ndarray,
+                      mirrored: tuple[bool, bool] = (False, False), n: int = 121) -> dict:
+    """The result's and Hertz's pressure along Hertz's major and minor axes.
+
+    Parameters
+    ----------
+    c : hertz.Contact
+        The reference.
+    xy, tri, pressure : the surface (frame coordinates [m]), its triangles, nodal p [Pa]
+    mirrored : (bool, bool)
+        The model holds only x >= 0 (y >= 0) of the frame: a point on the other
+        side is read at its mirror image.
+    n : int
+        Points per profile.
+
+    Returns
+    -------
+    dict
+        ``{"major"|"minor": {"s": (n,) [m], "fem": (n,) [Pa], "hertz": (n,) [Pa],
+        "rms": float (over p0)}}``; s runs over 0..PROFILE_EXTENT semi-axes
+        where the model holds one side of that axis only, else both sides.
+    """
+    theta = c.major_axis_angle
+    one_sided = mirrored[0] and mirrored[1]
+    out = {}
+    for name, semi, direction in (("major", c.a, (math.cos(theta), math.sin(theta))),
+                                  ("minor", c.b, (-math.sin(theta), math.cos(theta)))):
+        lo = 0.0 if one_sided else -PROFILE_EXTENT * semi
+        s = np.linspace(lo, PROFILE_EXTENT * semi, n)
+        pts = np.outer(s, direction)
+        for k in (0, 1):
+            if mirrored[k]:  # the model holds the positive half-axis
+                pts[:, k] = np.abs(pts[:, k])
+        fem = interpolate_on_face(xy, tri, pressure, pts)
+        hz = c.pressure(s if name == "major" else 0.0, s if name == "minor" else 0.0)
+        out[name] = {"s": s, "fem": fem, "hertz": np.asarray(hz, dtype=float),
+                     "rms": float(np.sqrt(np.nanmean((fem - hz) ** 2)) / c.p0)}
+    return out
+
+
+def ellipse_rotation(theta: float, body: int) -> np.ndarray:
+    """Rows: the ellipse frame's axes in the contact frame, for body 1 or 2.
+
+    x along the major axis (at angle ``theta`` [rad] from the frame's x axis),
+    y along the minor axis, z into the body (the frame's normal for body 1, its
+    opposite for body 2).  A tensor S in the contact frame is R S R^T in the
+    ellipse frame.
+    """
+    c, s = math.cos(theta), math.sin(theta)
+    return np.array([[c, s, 0.0], [-s, c, 0.0], [0.0, 0.0, 1.0 if body == 1 else -1.0]])
+
+
+def peak(depth: np.ndarray, values: np.ndarray, points: int = PEAK_POINTS) -> dict:
+    """The largest value of nodal samples along a line, from a local parabola.
+
+    A least-squares parabola through the ``points`` samples nearest (in index)
+    to the largest one; its vertex is the maximum.  The largest sample itself
+    is biased low by up to the curvature times (h/2)**2 and its position is
+    only known to +-h/2; the parabola's vertex is not.  Where the parabola is
+    not concave, or its vertex falls outside the samples it was fitted to, the
+    largest sample is returned (``fitted`` False).
+
+    Parameters
+    ----------
+    depth : ndarray, shape (n,)
+        Positions of the samples, increasing [m].
+    values : ndarray, shape (n,)
+        The values there.
+    points : int
+        Samples in the fit (3 or more).
+
+    Returns
+    -------
+    dict
+        value, depth, fitted, and the largest sample (node_value, node_depth).
+    """
+    if points < 3 or len(depth) < points:
+        raise ValueError(f"points must be at least 3 and at most the {len(depth)} samples, "
+                         f"got {points}")
+    k = int(np.nanargmax(values))
+    lo = min(max(k - points // 2, 0), len(depth) - points)
+    z, v = depth[lo:lo + points], values[lo:lo + points]
+    scale = z[-1] - z[0]
+    c2, c1, c0 = np.polyfit((z - z[k - lo]) / scale, v, 2)
+    out = {"value": float(values[k]), "depth": float(depth[k]), "fitted": False,
+           "node_value": float(values[k]), "node_depth": float(depth[k])}
+    if c2 < 0:
+        s = -c1 / (2 * c2)
+        zpk = z[k - lo] + s * scale
+        if z[0] <= zpk <= z[-1]:
+            out.update(value=float(c0 - c1 * c1 / (4 * c2)), depth=float(zpk), fitted=True)
+    return out
+
+
+def field_points(c, mirrored) -> dict[str, np.ndarray]:
+    """Sample points of the stress comparison in the ellipse frame, (k, 3) [m] per set.
+
+    ``axis``: FIELD_POINTS depths from FIELD_DEPTH b / FIELD_POINTS to FIELD_DEPTH b
+    on the z axis (the surface itself is left to the pressure checks: the
+    square-root edge of the pressure makes the stress there converge slowly);
+    ``major_plane`` (y = 0) and ``minor_plane`` (x = 0): the same depths by
+    FIELD_LATERAL positions from 0 to FIELD_EXTENT semi-axes on the side the
+    model holds, or 2 FIELD_LATERAL - 1 from -FIELD_EXTENT to FIELD_EXTENT
+    semi-axes where it holds both.  Uniform grids: the RMS over them
+    approximates the L2 norm over the region.
+
+    ``mirrored``: (x, y) of :func:`_mirror_axes`, or a bool for a quarter model.
+    """
+    if isinstance(mirrored, bool | np.bool_):
+        mirrored = (bool(mirrored), bool(mirrored))
+    z = np.linspace(0.0, FIELD_DEPTH * c.b, FIELD_POINTS + 1)[1:]
+    t = c.major_axis_angle
+    out = {"axis": np.column_stack([np.zeros_like(z), np.zeros_like(z), z])}
+    for name, semi, k, direction in (("major_plane", c.a, 0, (math.cos(t), math.sin(t))),
+                                     ("minor_plane", c.b, 1, (-math.sin(t), math.cos(t)))):
+        s = np.linspace(0.0, FIELD_EXTENT * semi, FIELD_LATERAL)
+        big = int(np.argmax(np.abs(direction)))
+        if mirrored[big]:  # the side whose frame coordinate along `big` is >= 0
+            s *= 1.0 if direction[big] > 0 else -1.0
+        else:
+            s = np.concatenate([-s[:0:-1], s])
+        ss, zz = np.meshgrid(s, z, indexing="ij")
+        pts = np.zeros((ss.size, 3))
+        pts[:, k], pts[:, 2] = ss.ravel(), zz.ravel()
+        out[name] = pts
+    return out
+
+
+def interpolate(m, nodal: np.ndarray, points: np.ndarray, neighbours: int = 32) -> np.ndarray:
+    """Piecewise-linear interpolation of nodal values at points of a tetrahedral mesh.
+
+    Parameters
+    ----------
+    m : object with ``p`` (3, n) node coordinates and ``t`` (4, e) tetrahedra
+        (a skfem.MeshTet, or a SimpleNamespace)
+    nodal : ndarray, shape (n, ...)
+        Values at the mesh's nodes.
+    points : ndarray, shape (k, 3)
+        Points in the mesh [m].
+    neighbours : int
+        Elements tried per point: those with the nearest centroids (then 20 times
+        more for points not found).
+
+    Raises
+    ------
+    ValueError
+        If a point lies outside the mesh.
+    """
+    from scipy.spatial import cKDTree
+
+    lo, hi = points.min(axis=0), points.max(axis=0)
+    margin = 0.05 * (hi - lo).max() + 1e-12
+    box = np.all((m.p[:, m.t].min(axis=1).T <= hi + margin)
+                 & (m.p[:, m.t].max(axis=1).T >= lo - margin), axis=1)
+    elements = np.nonzero(box)[0]
+    if not len(elements):
+        raise ValueError(f"the points lie outside the mesh, e.g. {points[0]}")
+    vertices = m.p.T[m.t[:, elements].T]  # (e, 4, 3)
+    inverse = np.linalg.inv((vertices[:, 1:] - vertices[:, :1]).transpose(0, 2, 1))
+    tree = cKDTree(vertices.mean(axis=1))
+
+    def barycentric(candidates, pts):
+        lam = np.einsum("kcij,kcj->kci", inverse[candidates],
+                        pts[:, None, :] - vertices[candidates, 0])
+        return np.concatenate([1 - lam.sum(axis=2, keepdims=True), lam], axis=2)
+
+    best_elem = np.zeros(len(points), dtype=np.int64)
+    best_lam = np.zeros((len(points), 4))
+    todo = np.arange(len(points))
+    for k in (neighbours, 20 * neighbours):
+        k = min(k, len(elements))
+        candidates = tree.query(points[todo], k)[1].reshape(len(todo), k)
+        lam = barycentric(candidates, points[todo])
+        j = np.argmax(lam.min(axis=2), axis=1)
+        rows = np.arange(len(todo))
+        best_elem[todo] = candidates[rows, j]
+        best_lam[todo] = lam[rows, j]
+        todo = todo[best_lam[todo].min(axis=1) < -1e-9]
+        if not len(todo):
+            break
+    if len(todo):
+        raise ValueError(f"{len(todo)} points lie outside the mesh, e.g. {points[todo[0]]}")
+    corners = m.t[:, elements[best_elem]].T  # (k, 4)
+    return np.einsum("kc,kc...->k...", best_lam, nodal[corners])
+
+
+def _worst(values):
+    return max(values, key=lambda v: abs(v) if not math.isnan(v) else math.inf)
+
+
+# --- stresses ---------------------------------------------------------------------------
+
+def _body_rotation(result: ContactResult, theta: float, body: int) -> np.ndarray:
+    """Rows: the ellipse frame's axes (depth into ``body`` as z) in model coordinates."""
+    rot = ellipse_rotation(theta, body)
+    return rot if result.frame.is_standard else rot @ result.frame.rotation
+
+
+def axis_nodes(result: ContactResult, body: int) -> np.ndarray:
+    """Nodes of a body's stress field on the contact axis, ordered by depth.
+
+    The given ``axis``, else the nodes within 1e-9 of the field's extent of the
+    line through the frame's origin along the normal, below the surface.
+    """
+    st = result.stress_of(body)
+    if st.axis is not None:
+        return st.axis
+    local = result.frame.to_frame(st.points)
+    scale = np.abs(local).max()
+    depth = local[:, 2] * (1.0 if body == 1 else -1.0)
+    nodes = np.nonzero((np.hypot(local[:, 0], local[:, 1]) <= 1e-9 * scale)
+                       & (depth >= -1e-9 * scale))[0]
+    return nodes[np.argsort(depth[nodes], kind="stable")]
+
+
+def axis_stress(result: ContactResult, theta: float) -> dict:
+    """The result's stress at the nodes on the axis of each body, in the ellipse frame."""
+    out = {}
+    for st in result.stress:
+        nodes = axis_nodes(result, st.body)
+        rot = _body_rotation(result, theta, st.body)
+        depth = ((st.points[nodes] - result.frame.origin) @ result.frame.normal
+                 * (1.0 if st.body == 1 else -1.0))
+        if result.frame.is_standard:  # the same numbers as |z| in the blocks' frame
+            depth = np.abs(st.points[nodes, 2])
+        out[f"body{st.body}"] = {"depth": depth,
+                                 "stress": np.einsum("ij,njk,lk->nil", rot, st.stress[nodes],
+                                                     rot)}
+    return out
+
+
+def subsurface_errors(c, axis: dict, body: int) -> dict:
+    """The largest von Mises stress on the axis of a body against Hertz's.
+
+    ``axis`` is :func:`axis_stress`'s entry for the body; the maximum is the
+    vertex of :func:`peak`'s parabola through the nodal von Mises stresses.
+    """
+    vm = von_mises(axis["stress"])
+    fem = peak(axis["depth"], vm)
+    exact = c.subsurface(body)
+    return {"von_mises": fem["value"], "z_von_mises": fem["depth"], "fitted": fem["fitted"],
+            "node_von_mises": fem["node_value"], "node_z_von_mises": fem["node_depth"],
+            "hertz_von_mises": float(exact.von_mises),
+            "hertz_z_von_mises": float(exact.z_von_mises),
+            "von_mises_rel_err": fem["value"] / exact.von_mises - 1,
+            "z_von_mises_rel_err": fem["depth"] / exact.z_von_mises - 1}
+
+
+def field_errors(c, result: ContactResult, body: int, points: dict) -> dict[str, float]:
+    """RMS difference of the result's stress from Hertz's over each set of sample points.
+
+    The nodal stress, interpolated linearly in the body's tetrahedra at the
+    points of :func:`field_points` and turned into the ellipse frame, against
+    ``c.stress`` there: the root mean square over the points and the six
+    components xx, yy, zz, yz, xz, xy of the difference, over c.p0.
+    """
+    st = result.stress_of(body)
+    rot = _body_rotation(result, c.major_axis_angle, body)
+    m = SimpleNamespace(p=st.points.T, t=st.tetrahedra.T)
+    out = {}
+    iu = np.triu_indices(3)
+    for name, pts in points.items():
+        model = pts @ rot if result.frame.is_standard else pts @ rot + result.frame.origin
+        fem = interpolate(m, st.stress, model)
+        fem = np.einsum("ij,njk,lk->nil", rot, fem, rot)
+        exact = c.stress(pts[:, 0], pts[:, 1], pts[:, 2], body=body)
+        diff = (fem - exact)[:, iu[0], iu[1]]
+        out[name] = float(np.sqrt(np.mean(diff**2)) / c.p0)
+    return out
+
+
+# --- the grader -------------------------------------------------------------------------
+
+def _tolerances(tolerances: Mapping[str, float] | None) -> dict[str, float]:
+    tol = dict(DEFAULT_TOLERANCES if tolerances is None else tolerances)
+    for name, value in tol.items():
+        if name not in METRICS:
+            raise ValueError(f"tolerances: unknown metric {name!r}; known: "
+                             f"{', '.join(sorted(METRICS))}")
+        if not (isinstance(value, int | float) and value > 0 and math.isfinite(value)):
+            raise ValueError(f"tolerances: {name} must be a finite number > 0, got {value!r}")
+    return tol
+
+
+def _sanity(result: ContactResult, c, xy, force_nodes, area, where: str) -> None:
+    """Refuse results that cannot be graded against this scene (bad input, not a fail)."""
+    mult = result.multiplicity
+    if result.symmetry != "whole":
+        scale = np.abs(xy).max()
+        neg_x, neg_y = xy[:, 0].min() < -1e-6 * scale, xy[:, 1].min() < -1e-6 * scale
+        if (result.symmetry == "quarter" and (neg_x or neg_y)) or (neg_x and neg_y):
+            raise ResultError(f"{where}symmetry {result.symmetry!r}, but the contact surface "
+                              f"has nodes on both sides of a symmetry plane (x from "
+                              f"{xy[:, 0].min():.3g} m, y from {xy[:, 1].min():.3g} m in the "
+                              f"contact frame): give --symmetry whole, or the frame")
+    if result.pressure is not None and result.normal_force is None:
+        integral = mult * float(result.pressure @ area)
+        ratio = integral / result.force
+        if not 1 / 1.8 < ratio < 1.8:
+            raise ResultError(
+                f"{where}the pressure integral ({integral:.6g} N with symmetry "
+                f"{result.symmetry!r}) and the force ({result.force:.6g} N) disagree by a "
+                f"factor {ratio:.3g}: units (--units), symmetry (--symmetry) or the force "
+                f"field contradict each other")
+    total = mult * float(force_nodes.sum())
+    if result.normal_force is not None and not 1 / 1.8 < total / result.force < 1.8:
+        raise ResultError(f"{where}the nodal contact forces sum to {total:.6g} N with "
+                          f"symmetry {result.symmetry!r}, the force is {result.force:.6g} N: "
+                          f"units or symmetry contradict each other")
+    mom = moment_ellipse(xy, force_nodes, result.symmetry != "whole")
+    for name, value, hz in (("semi-major axis", mom["a"], c.a), ("semi-minor axis", mom["b"],
+                                                                 c.b)):
+        if not 1 / 3 < value / hz < 3:
+            raise ResultError(f"{where}the scene does not match the result: the contact's "
+                              f"{name} from the nodal forces is {value:.4g} m, Hertz's at "
+                              f"{result.force:.6g} N is {hz:.4g} m (a factor "
+                              f"{value / hz:.3g}); check the scene, --units and the frame")
+
+
+def grade(result: ContactResult, scene, tolerances: Mapping[str, float] | None = None, *,
+          semi_axes: str = "auto", hertz_at: Callable | None = None,
+          stress: bool = True) -> Grade:
+    """Grade a contact result against Hertz at the force it reached.
+
+    Parameters
+    ----------
+    result : ContactResult
+        Any source's result (see :mod:`fem_validation.result`).
+    scene : object with ``name`` and ``hertz(load) -> hertz.Contact``
+        The two bodies (:class:`fem_validation.scenes.Scene`, e.g. from
+        :func:`fem_validation.scenes.scene_from_toml`, or a CurvedScene); body
+        1 lies on the side the frame's normal points to.
+    tolerances : dict, optional
+        Metric name -> largest allowed |value| (default :data:`DEFAULT_TOLERANCES`;
+        metrics not named are reported as information).
+    semi_axes : {"auto", "moments", "fit"}
+        Where a_rel_err and b_rel_err come from (see the module docstring).
+    hertz_at : callable, optional
+        load [N] -> the Hertz contact to compare with; default ``scene.hertz``.
+        (A deliberately wrong reference must make the grade fail.)
+    stress : bool
+        Grade the stress fields the result holds.
+
+    Returns
+    -------
+    Grade
+
+    Raises
+    ------
+    ResultError
+        If the result contradicts itself or the scene (units, symmetry, a scene
+        that does not match): bad input, not a failed grade.
+    ValueError
+        If a tolerance or semi_axes is not allowed.
+    """
+    if semi_axes not in ("auto", "moments", "fit"):
+        raise ValueError(f"semi_axes must be 'auto', 'moments' or 'fit', got {semi_axes!r}")
+    tol = _tolerances(tolerances)
+    where = f"{result.source}: " if result.source else ""
+    c = (scene.hertz if hertz_at is None else hertz_at)(result.force)
+    xy = result.xy
+    symmetric = result.symmetry != "whole"
+    mirrored = _mirror_axes(result.symmetry, xy)
+    tri = result.triangles if result.triangles is not None else surface_triangles(xy)
+    area = lumped_area(xy, tri)
+    if result.normal_force is not None:
+        f = result.normal_force
+    else:
+        f = result.pressure * area
+    if result.pressure is not None:
+        p = result.pressure
+    else:
+        p = np.divide(f, area, out=np.zeros_like(f), where=area > 0)
+    _sanity(result, c, xy, f, area, where)
+    if semi_axes == "auto":
+        semi_axes = "moments" if result.normal_force is not None else "fit"
+
+    moments = moment_ellipse(xy, f, symmetric)
+    fit = fit_ellipse(xy, p)
+    active = result.active if result.active is not None else p > 0
+    try:
+        edge = edge_ellipse(active_edge_points(xy, tri, active), symmetric)
+    except ValueError:
+        edge = {"a": math.nan, "b": math.nan, "major_axis_angle_deg": math.nan, "points": 0}
+    prof = pressure_profiles(c, xy, tri, p, mirrored)
+    hertz_angle = math.degrees(c.major_axis_angle)
+    chosen = moments if semi_axes == "moments" else fit
+    d_angle = (chosen["major_axis_angle_deg"] - hertz_angle + 90) % 180 - 90
+    no_angle = c.alpha < 1 + 1e-9 or symmetric
+    metrics = {
+        "a_rel_err": chosen["a"] / c.a - 1, "b_rel_err": chosen["b"] / c.b - 1,
+        "p0_rel_err": fit["p0"] / c.p0 - 1, "peak_nodal_rel_err": float(p.max() / c.p0 - 1),
+        "rms_major": prof["major"]["rms"], "rms_minor": prof["minor"]["rms"],
+        "a_moments_rel_err": moments["a"] / c.a - 1, "b_moments_rel_err": moments["b"] / c.b - 1,
+        "a_fit_rel_err": fit["a"] / c.a - 1, "b_fit_rel_err": fit["b"] / c.b - 1,
+        "edge_a_rel_err": edge["a"] / c.a - 1, "edge_b_rel_err": edge["b"] / c.b - 1,
+        "pressure_integral_rel_err": math.nan, "reaction_rel_err": math.nan,
+        "angle_err_deg": math.nan if no_angle else d_angle,
+        "approach_rel_err": (math.nan if result.approach is None
+                             else result.approach / c.delta - 1),
+    }
+    integral = math.nan
+    if result.pressure is not None:
+        integral = result.multiplicity * float(result.pressure @ area)
+        metrics["pressure_integral_rel_err"] = integral / result.force - 1
+    if result.reaction is not None:
+        metrics["reaction_rel_err"] = result.force / result.reaction - 1
+    # Held by construction: the pressure integral where the pressure is the nodal force
+    # over the lumped area and the force their sum; anything the source names.
+    by_construction = set(result.details.get("by_construction", ()))
+    if result.normal_force is not None:
+        by_construction.add("pressure_integral_rel_err")
+
+    stress_out, axis = {}, {}
+    if stress and result.stress:
+        axis = axis_stress(result, c.major_axis_angle)
+        points = field_points(c, mirrored)
+        for st in result.stress:
+            key = f"body{st.body}"
+            if len(axis[key]["depth"]) >= PEAK_POINTS:
+                stress_out[key] = subsurface_errors(c, axis[key], st.body)
+            else:
+                stress_out[key] = {"von_mises_rel_err": math.nan, "z_von_mises_rel_err": math.nan}
+            if st.tetrahedra is not None:
+                stress_out[key]["field_rms"] = field_errors(c, result, st.body, points)
+        metrics["von_mises_rel_err"] = _worst([s["von_mises_rel_err"]
+                                               for s in stress_out.values()])
+        metrics["z_von_mises_rel_err"] = _worst([s["z_von_mises_rel_err"]
+                                                 for s in stress_out.values()])
+        for name in FIELD_SETS:
+            metrics[f"stress_rms_{name}"] = _worst([s["field_rms"][name]
+                                                    for s in stress_out.values()
+                                                    if "field_rms" in s] or [math.nan])
+    for name in METRICS:
+        metrics.setdefault(name, math.nan)
+
+    checks = []
+    for name in METRICS:
+        value = metrics[name]
+        if name in by_construction:
+            status, limit = "by construction", None
+        elif name not in tol:
+            status, limit = "information", None
+        elif math.isnan(value):
+            status, limit = "not available", tol[name]
+        else:
+            limit = tol[name]
+            status = "pass" if abs(value) <= limit else "fail"
+        checks.append(Check(name, float(value), limit, status))
+    passed = all(ch.status != "fail" for ch in checks)
+    return Grade(
+        scene=getattr(scene, "name", ""), source=result.source, force=result.force,
+        symmetry=result.symmetry, semi_axes=semi_axes, metrics=metrics, checks=tuple(checks),
+        passed=passed,
+        hertz={"a": c.a, "b": c.b, "p0": c.p0, "delta": c.delta, "alpha": float(c.alpha),
+               "major_axis_angle_deg": hertz_angle},
+        fem={"a": chosen["a"], "b": chosen["b"], "p0": fit["p0"], "moments": moments,
+             "fit": fit, "edge": edge, "peak_nodal_pressure": float(p.max()),
+             "pressure_integral": integral, "approach": result.approach,
+             "reaction": result.reaction},
+        profiles=prof, stress=stress_out, axis_stress=axis, details=dict(result.details))
