@@ -144,6 +144,13 @@ def _name_exodus_blocks(path: Path, names: list[str]) -> None:
         nc.variables["eb_prop1"][:] = np.arange(1, len(names) + 1)
 
 
+def _length(value, ul: float):
+    """A length (or a list of them) in the file's unit; other values as they are."""
+    if isinstance(value, list):
+        return [_length(v, ul) for v in value]
+    return value * ul if isinstance(value, float) else value
+
+
 def problem(model: DeckModel, units: str = "mm", files: dict | None = None,
             command: str | None = None) -> dict:
     """What problem.json holds: the scene, the model, loads, contact, Hertz's values."""
@@ -184,8 +191,8 @@ def problem(model: DeckModel, units: str = "mm", files: dict | None = None,
                   "level": model.level, "element": "10-node tetrahedron (C3D10 node order)",
                   "nodes": len(model.nodes), "elements": len(model.elements),
                   "element_size_at_contact": model.h0 * ul,
-                  **{k: (v * ul if isinstance(v, float) and k != "penalty_factor" else v)
-                     for k, v in model.info.items() if k != "penalty_factor"}},
+                  **{k: _length(v, ul) for k, v in model.info.items()
+                     if k != "penalty_factor"}},
         "frame": {"origin": [0.0, 0.0, 0.0], "normal_into_body1": [0.0, 0.0, 1.0],
                   "body1_x_axis": [1.0, 0.0, 0.0]},
         "materials": {"body1": {"E": s.body1.E * us, "nu": s.body1.nu},

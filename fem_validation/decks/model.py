@@ -281,7 +281,8 @@ def build_curved_model(scene: Scene, level: int, slave_body: int = 1,
                      info={"ball_radius": r, "groove_radius": cscene.groove_radius,
                            "block_half_width": mesh.parameters["L"] * r,
                            "block_depth": mesh.block_depth,
-                           "moved": "the ball's equator (z = R)"})
+                           "moved": "the ball's equator (z = R)",
+                           "far_face_depths": [r, mesh.block_depth]})
 
 
 # --------------------------------------------------------------------------- blocks
@@ -351,7 +352,8 @@ def build_block_model(scene: Scene, level: int, quarter: bool | None = None,
                      geometry="paraboloid-blocks", h0=mesh.h0,
                      approach=imposed_approach(scene, mesh), penalty_factor=penalty_factor,
                      info={"block_half_width": mesh.extent, "block_depth": depth,
-                           "moved": "body 1's top face (z = H)"})
+                           "moved": "body 1's top face (z = H)",
+                           "far_face_depths": [depth, depth]})
 
 
 def _level_scale(level: int) -> float:
