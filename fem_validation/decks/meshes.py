@@ -76,6 +76,13 @@ def write_mesh(model: DeckModel, out: Path, fmt: str, units: str = "mm") -> Path
 
     if fmt not in FORMATS:
         raise ValueError(f"format must be one of {sorted(FORMATS)}, got {fmt!r}")
+    needs = {"med": "h5py", "exodus": "netCDF4"}.get(fmt)
+    if needs:
+        try:
+            __import__(needs)
+        except ImportError:
+            raise ValueError(f"--format {fmt} needs the {needs} package (pip install {needs}, "
+                             f"or the fem extra)") from None
     path = Path(out) / FORMATS[fmt]
     points = model.nodes * UNITS[units]["length"]
     faces = face_groups(model)

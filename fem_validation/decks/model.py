@@ -34,7 +34,8 @@ from ..scenes import Scene
 
 #: C3D10 / Abaqus mid-side nodes: the vertex pairs of nodes 5..10 (0-based).
 TET10_EDGES = ((0, 1), (1, 2), (2, 0), (0, 3), (1, 3), (2, 3))
-#: C3D4 / C3D10 faces S1..S4 (0-based vertices), outward normals for a positive tet.
+#: C3D4 / C3D10 faces S1..S4 (0-based vertices); on a positive tetrahedron the right-hand
+#: normal of each vertex triple points into the element.
 TET_FACES = ((0, 1, 2), (0, 3, 1), (1, 3, 2), (2, 3, 0))
 #: Penalty stiffness of the contact over E* / h0 (h0 the element size at the contact).
 PENALTY_FACTOR = 10.0
