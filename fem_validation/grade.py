@@ -118,6 +118,20 @@ METRICS = {
                                                   "the minor axis"),
 }
 
+#: The metrics of a force-approach curve (:func:`grade_force_approach`).
+CURVE_METRICS = {
+    "force_rel_err_max": ("force, largest", "largest |F - F_Hertz(delta)| / F_Hertz(delta) over "
+                                            "the curve (signed)"),
+    "force_rel_err_rms": ("force, RMS", "RMS of (F - F_Hertz(delta)) / F_Hertz(delta)"),
+    "exponent_err": ("exponent", "slope of log F against log delta (least squares) minus "
+                                 "Hertz's 3/2"),
+}
+#: Default tolerances of a force-approach curve: Hertz's law in closed form, so a DEM
+#: code's single contact should follow it to its own rounding; 1% leaves room for an
+#: integrator's overlap lagging the force by a step.
+CURVE_TOLERANCES = {"force_rel_err_max": 0.01, "force_rel_err_rms": 0.01,
+                    "exponent_err": 0.01}
+
 
 @dataclass(frozen=True)
 class Check:
@@ -147,7 +161,7 @@ class Check:
     def to_dict(self) -> dict:
         return {"name": self.name, "value": nan_to_none(self.value),
                 "tolerance": self.tolerance, "pass": self.passed, "status": self.status,
-                "meaning": METRICS.get(self.name, ("", ""))[1]}
+                "meaning": {**METRICS, **CURVE_METRICS}.get(self.name, ("", ""))[1]}
 
 
 @dataclass(frozen=True)
@@ -665,12 +679,15 @@ def field_errors(c, result: ContactResult, body: int, points: dict) -> dict[str,
 
 # --- the grader -------------------------------------------------------------------------
 
-def _tolerances(tolerances: Mapping[str, float] | None) -> dict[str, float]:
-    tol = dict(DEFAULT_TOLERANCES if tolerances is None else tolerances)
+def _tolerances(tolerances: Mapping[str, float] | None, defaults=None,
+                metrics=None) -> dict[str, float]:
+    defaults = DEFAULT_TOLERANCES if defaults is None else defaults
+    metrics = METRICS if metrics is None else metrics
+    tol = dict(defaults if tolerances is None else tolerances)
     for name, value in tol.items():
-        if name not in METRICS:
+        if name not in metrics:
             raise ValueError(f"tolerances: unknown metric {name!r}; known: "
-                             f"{', '.join(sorted(METRICS))}")
+                             f"{', '.join(sorted(metrics))}")
         if not (isinstance(value, int | float) and value > 0 and math.isfinite(value)):
             raise ValueError(f"tolerances: {name} must be a finite number > 0, got {value!r}")
     return tol
@@ -828,19 +845,7 @@ def grade(result: ContactResult, scene, tolerances: Mapping[str, float] | None =
     for name in METRICS:
         metrics.setdefault(name, math.nan)
 
-    checks = []
-    for name in METRICS:
-        value = metrics[name]
-        if name in by_construction:
-            status, limit = "by construction", None
-        elif name not in tol:
-            status, limit = "information", None
-        elif math.isnan(value):
-            status, limit = "not available", tol[name]
-        else:
-            limit = tol[name]
-            status = "pass" if abs(value) <= limit else "fail"
-        checks.append(Check(name, float(value), limit, status))
+    checks = _checks(metrics, tol, METRICS, by_construction)
     passed = all(ch.status != "fail" for ch in checks)
     return Grade(
         scene=getattr(scene, "name", ""), source=result.source, force=result.force,
@@ -853,3 +858,86 @@ def grade(result: ContactResult, scene, tolerances: Mapping[str, float] | None =
              "pressure_integral": integral, "approach": result.approach,
              "reaction": result.reaction},
         profiles=prof, stress=stress_out, axis_stress=axis, details=dict(result.details))
+
+
+def _checks(metrics: dict, tol: dict, names, by_construction=()) -> tuple:
+    checks = []
+    for name in names:
+        value = metrics[name]
+        if name in by_construction:
+            status, limit = "by construction", None
+        elif name not in tol:
+            status, limit = "information", None
+        elif math.isnan(value):
+            status, limit = "not available", tol[name]
+        else:
+            limit = tol[name]
+            status = "pass" if abs(value) <= limit else "fail"
+        checks.append(Check(name, float(value), limit, status))
+    return tuple(checks)
+
+
+def grade_force_approach(approach, force, scene, tolerances: Mapping[str, float] | None = None,
+                         *, source: str = "", hertz_at: Callable | None = None) -> Grade:
+    """Grade a normal force against approach curve (a DEM code's single contact) against
+    Hertz's law F(delta) for the scene's bodies.
+
+    Parameters
+    ----------
+    approach : array_like, shape (n,)
+        Approach (overlap) of the bodies [m], > 0 where graded (rows with approach
+        <= 0 are left out: no contact).
+    force : array_like, shape (n,)
+        Normal force there [N].
+    scene : object with ``body1``, ``body2``, ``angle`` (a Scene)
+    tolerances : dict, optional
+        Default :data:`CURVE_TOLERANCES`.
+    hertz_at : callable, optional
+        approach [m] -> the Hertz contact (default ``hertz.contact(body1, body2,
+        approach=..., angle=scene.angle)``); a wrong one must fail.
+
+    Raises
+    ------
+    ResultError
+        Fewer than 2 points in contact, NaN, negative forces.
+    """
+    import hertz
+
+    where = f"{source}: " if source else ""
+    d = np.asarray(approach, dtype=float).ravel()
+    f = np.asarray(force, dtype=float).ravel()
+    if d.shape != f.shape:
+        raise ResultError(f"{where}approach and force must have the same length, got "
+                          f"{d.size} and {f.size}")
+    for name, v in (("approach", d), ("force", f)):
+        bad = ~np.isfinite(v)
+        if bad.any():
+            raise ResultError(f"{where}column {name!r} has {int(bad.sum())} non-finite "
+                              f"value(s), first at row {int(np.argmax(bad))}")
+    keep = d > 0
+    if keep.sum() < 2:
+        raise ResultError(f"{where}fewer than 2 rows with a positive approach: nothing to grade")
+    d, f = d[keep], f[keep]
+    if not (f > 0).all():
+        k = int(np.argmax(~(f > 0)))
+        raise ResultError(f"{where}column 'force' must be > 0 where the approach is, got "
+                          f"{f[k]!r} at approach {d[k]!r}")
+    tol = _tolerances(tolerances, CURVE_TOLERANCES, CURVE_METRICS)
+    if hertz_at is None:
+        def hertz_at(delta):
+            return hertz.contact(scene.body1, scene.body2, approach=delta, angle=scene.angle)
+    ref = np.array([hertz_at(x).load for x in d])
+    err = f / ref - 1
+    slope = np.polyfit(np.log(d), np.log(f), 1)[0] if len(np.unique(d)) > 1 else math.nan
+    metrics = {"force_rel_err_max": float(_worst(list(err))),
+               "force_rel_err_rms": float(np.sqrt(np.mean(err**2))),
+               "exponent_err": float(slope - 1.5)}
+    checks = _checks(metrics, tol, CURVE_METRICS)
+    c = hertz_at(d.max())
+    return Grade(scene=getattr(scene, "name", ""), source=source, force=float(f.max()),
+                 symmetry="whole", semi_axes="-", metrics=metrics, checks=checks,
+                 passed=all(ch.status != "fail" for ch in checks),
+                 hertz={"a": c.a, "b": c.b, "p0": c.p0, "delta": c.delta,
+                        "alpha": float(c.alpha), "load_at_largest_approach": c.load},
+                 fem={"approach": d, "force": f, "hertz_force": ref, "rel_err": err},
+                 details={"kind": "force-approach", "points": int(d.size)})

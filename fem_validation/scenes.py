@@ -102,3 +102,99 @@ def default_scenes() -> list[Scene]:
 
 
 NAMED = {"steel-aluminium": steel_on_aluminium, "crossed-30deg": crossed_30deg}
+
+
+_SCENE_KEYS = ("name", "load", "approach", "angle_deg", "body1", "body2")
+_BODY_KEYS = ("Rx", "Ry", "E", "nu")
+
+
+def scene_from_toml(path) -> Scene:
+    """A :class:`Scene` from a ``hertz`` TOML scene file (SI; the format of :mod:`hertz.cli`).
+
+    The file needs ``[body1]`` and ``[body2]``, each with all of Rx, Ry [m]
+    (negative concave, "inf" flat), E [Pa] and nu; ``load`` [N] or ``approach``
+    [m] (at most one: the target; a graded result brings its own force, so
+    neither is needed there: the target load is then NaN), ``angle_deg`` and
+    ``name`` (default: the file's stem) are optional.  Unlike the ``hertz``
+    command, nothing is filled in from its default scene: a grade against a body
+    the file does not describe would be a wrong number.
+
+    Raises
+    ------
+    ValueError
+        Naming the file and the key: unreadable file, invalid TOML, a missing or
+        unknown key, a value that is not a number, bodies without a Hertz contact.
+
+    Examples
+    --------
+    >>> import tempfile, pathlib
+    >>> f = pathlib.Path(tempfile.mkdtemp()) / "ball.toml"
+    >>> _ = f.write_text('load = 100.0\\n[body1]\\nRx = 0.01\\nRy = 0.01\\nE = 210e9\\nnu = 0.3\\n'
+    ...                  '[body2]\\nRx = "inf"\\nRy = "inf"\\nE = 210e9\\nnu = 0.3\\n')
+    >>> s = scene_from_toml(f)
+    >>> s.name, s.load, round(s.hertz().a * 1e6, 1)
+    ('ball', 100.0, 186.6)
+    """
+    import tomllib
+    from pathlib import Path
+
+    path = Path(path)
+    where = f"scene file {str(path)!r}"
+    try:
+        with open(path, "rb") as f:
+            data = tomllib.load(f)
+    except OSError as exc:
+        raise ValueError(f"cannot read {where}: {exc.strerror}") from None
+    except (tomllib.TOMLDecodeError, UnicodeDecodeError) as exc:
+        raise ValueError(f"{where} is not valid TOML: {exc}") from None
+    except RecursionError:
+        raise ValueError(f"{where} is nested too deeply to read") from None
+    unknown = sorted(set(data) - set(_SCENE_KEYS))
+    if unknown:
+        raise ValueError(f"{where}: unknown key(s) {', '.join(unknown)}; allowed: "
+                         f"{', '.join(_SCENE_KEYS)}")
+
+    def number(value, key):
+        if isinstance(value, bool) or not isinstance(value, int | float | str):
+            raise ValueError(f"{where}: {key} must be a number, got {type(value).__name__}")
+        try:
+            x = float(value)
+        except (ValueError, OverflowError):
+            raise ValueError(f"{where}: {key} must be a number, got {value!r}"[:200]) from None
+        if math.isnan(x):
+            raise ValueError(f"{where}: {key} must be a number, got NaN")
+        return x
+
+    bodies = []
+    for name in ("body1", "body2"):
+        spec = data.get(name)
+        if not isinstance(spec, dict):
+            raise ValueError(f"{where}: the [{name}] table is missing")
+        missing = [k for k in _BODY_KEYS if k not in spec]
+        extra = sorted(set(spec) - set(_BODY_KEYS))
+        if missing or extra:
+            raise ValueError(f"{where}: [{name}] needs exactly {', '.join(_BODY_KEYS)}"
+                             + (f"; missing {', '.join(missing)}" if missing else "")
+                             + (f"; unknown {', '.join(extra)}" if extra else ""))
+        try:
+            bodies.append(hertz.Body(**{k: number(spec[k], f"{name}.{k}") for k in _BODY_KEYS}))
+        except (TypeError, ValueError) as exc:
+            raise ValueError(f"{where}: [{name}]: {exc}") from None
+    angle = math.radians(number(data.get("angle_deg", 0.0), "angle_deg"))
+    if "load" in data and "approach" in data:
+        raise ValueError(f"{where}: give at most one of load [N] and approach [m]")
+    try:
+        if "approach" in data:
+            load = hertz.contact(*bodies, angle=angle,
+                                 approach=number(data["approach"], "approach")).load
+        else:
+            load = number(data["load"], "load") if "load" in data else 1.0
+            hertz.contact(*bodies, load=load, angle=angle)  # can these bodies touch at a point?
+            if "load" not in data:
+                load = math.nan
+    except (TypeError, ValueError) as exc:
+        raise ValueError(f"{where}: {exc}") from None
+    name = data.get("name", path.stem)
+    if not isinstance(name, str):
+        raise ValueError(f"{where}: name must be a string, got {type(name).__name__}")
+    return Scene(name, bodies[0], bodies[1], load, angle)
