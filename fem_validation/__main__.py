@@ -7,14 +7,17 @@
     python -m fem_validation --curved --out DIR    # a ball on a plane and in a groove
     python -m fem_validation --curved --level 2 --a-over-r 0.01 0.2 --out DIR
     python -m fem_validation --curved --levels 3 4 --out DIR  # two levels, one table
-    python -m fem_validation deck --scene FILE.toml --format calculix --out DIR
+    python -m fem_validation grade RESULT --scene FILE.toml --out DIR   # another code's result
+    python -m fem_validation deck --scene FILE.toml --format calculix --out DIR  # a deck for one
 
 Writes DIR/report.json, DIR/report.md, <scene>_body1.vtu, <scene>_body2.vtu and
 <scene>_pressure.png per scene (a study writes study.json, study.md and
 study.png; --curved writes curved.json, curved.md and curved.png, at the
 levels 0-4 of fem_validation.curved_mesh, default 3); with --readme also the
-README's tables and docs/fem/*.png.  Errors print one line on stderr and exit
-with status 2.
+README's tables and docs/fem/*.png.  Errors (usage, conflicting flags, an
+--out that cannot be written, an alpha the meshes do not support, --readme
+outside a checkout) print one line on stderr and exit with status 2, before
+anything runs.  ``grade``: see :mod:`fem_validation.grade_cli`.
 """
 
 from __future__ import annotations
@@ -30,13 +33,23 @@ from pathlib import Path
 
 from . import NESTED_REBUILD_FRACTION, FEMValidationError, reports, validate
 from .curved import A_OVER_R, run_curved
-from .curved_mesh import DEFAULT_CURVED_LEVEL
+from .curved_mesh import CURVED_LEVELS, DEFAULT_CURVED_LEVEL
+from .grade_cli import OneLineParser, UsageError
 from .mesh import DEFAULT_LEVEL, LEVEL_H0, LEVEL_RATIO, LEVEL_SCALE
-from .scenes import NAMED, default_scenes, equal_steel
+from .output import prepare_out, report_markdown
+from .scenes import MAX_ALPHA, NAMED, default_scenes, equal_steel
 from .solve import INITIAL_ACTIVE, REBUILD_FRACTION
 from .study import DEFAULT_LEVELS, refinement_study
 
 log = logging.getLogger("fem_validation")
+
+
+def _alpha(alpha: float, what: str = "--alpha") -> float:
+    """An alpha the block meshes support, else a one-line ValueError saying the range."""
+    if not 1 <= alpha <= MAX_ALPHA:
+        raise ValueError(f"{what} {alpha:g}: the block meshes support 1 <= alpha <= "
+                         f"{MAX_ALPHA:g} (see fem_validation.scenes.MAX_ALPHA)")
+    return alpha
 
 
 def _scene(name: str):
@@ -45,20 +58,30 @@ def _scene(name: str):
             alpha = float(name.removeprefix("alpha-"))
         except ValueError:
             raise ValueError(f"scene {name!r}: alpha-<A> needs a number A") from None
-        return equal_steel(alpha)
+        return equal_steel(_alpha(alpha, f"scene {name!r}: alpha"))
     if name in NAMED:
         return NAMED[name]()
     raise ValueError(f"unknown scene {name!r}: use alpha-<A>, {', '.join(NAMED)}")
+
+
+def readme_section(marker: str) -> str:
+    """The README.md text, if it has the <!-- marker --> section; ValueError otherwise
+    (checked before a run, so that --readme outside a checkout fails at once)."""
+    readme = Path("README.md")
+    content = readme.read_text() if readme.exists() else ""
+    begin, end = f"<!-- {marker} -->", f"<!-- /{marker} -->"
+    if begin not in content or end not in content:
+        raise ValueError(f"--readme: README.md (in {Path.cwd()}) has no {begin} ... {end} "
+                         f"section: run from the repository's root")
+    return content
 
 
 def publish(marker: str, text: str, images) -> None:
     """Replace the README section between <!-- marker --> and <!-- /marker --> and copy
     the images to docs/fem/."""
     readme = Path("README.md")
-    content = readme.read_text() if readme.exists() else ""
+    content = readme_section(marker)
     begin, end = f"<!-- {marker} -->", f"<!-- /{marker} -->"
-    if begin not in content or end not in content:
-        raise ValueError(f"README.md (in {Path.cwd()}) has no {begin} ... {end} section")
     head, rest = content.split(begin, 1)
     readme.write_text(f"{head}{begin}\n{text.strip()}\n{end}{rest.split(end, 1)[1]}")
     docs = Path("docs") / "fem"
@@ -68,8 +91,9 @@ def publish(marker: str, text: str, images) -> None:
 
 
 def _parser() -> argparse.ArgumentParser:
-    p = argparse.ArgumentParser(prog="python -m fem_validation",
-                                description="Finite-element validation of hertz.")
+    p = OneLineParser(prog="python -m fem_validation",
+                      description="Finite-element validation of hertz (python -m "
+                                  "fem_validation grade --help: grade another code's result).")
     p.add_argument("--alpha", type=float, nargs="+", metavar="A",
                    help="equal steel bodies with curvature ratio A (repeatable)")
     p.add_argument("--scene", nargs="+", metavar="NAME", default=[],
@@ -81,7 +105,7 @@ def _parser() -> argparse.ArgumentParser:
     p.add_argument("--curved", action="store_true",
                    help="true curved bodies: a steel ball on a flat block and in a groove "
                         "(R_g = 1.04 R) at several loads; curved.json, .md, .png")
-    p.add_argument("--a-over-r", type=float, nargs="+", default=list(A_OVER_R), metavar="X",
+    p.add_argument("--a-over-r", type=float, nargs="+", default=None, metavar="X",
                    help="with --curved: target Hertz semi-major axis over the ball radius "
                         f"(default {' '.join(map(str, A_OVER_R))})")
     p.add_argument("--study", metavar="NAME", help="mesh-refinement study of one scene")
@@ -103,19 +127,40 @@ def _parser() -> argparse.ArgumentParser:
     return p
 
 
+def _conflicts(args) -> None:
+    """Refuse flags that the chosen run would silently ignore."""
+    given = {"--curved": args.curved, "--study": args.study is not None,
+             "--alpha": args.alpha is not None, "--scene": bool(args.scene),
+             "--a-over-r": args.a_over_r is not None, "--level": args.level is not None,
+             "--levels": args.levels is not None,
+             "--initial-active": args.initial_active != "hertz",
+             "--amg-rebuild": args.amg_rebuild is not None}
+    pairs = [("--curved", "--study"), ("--curved", "--alpha"), ("--curved", "--scene"),
+             ("--study", "--alpha"), ("--study", "--scene"), ("--study", "--level"),
+             ("--curved", "--initial-active"), ("--curved", "--amg-rebuild"),
+             ("--level", "--levels")]
+    for a, b in pairs:
+        if given[a] and given[b]:
+            raise UsageError(f"{a} and {b} cannot be combined")
+    if given["--a-over-r"] and not args.curved:
+        raise UsageError("--a-over-r applies to --curved only")
+    if given["--levels"] and not (args.curved or args.study):
+        raise UsageError("--levels applies to --study and --curved only (use --level)")
+
+
 def _deck(argv: list[str]) -> int:
     """``python -m fem_validation deck ...``: a benchmark deck for another code."""
     from . import decks
 
-    p = argparse.ArgumentParser(prog="python -m fem_validation deck",
-                                description="Write a Hertz benchmark as input for another "
-                                            "finite-element code (fem_validation.decks).")
+    p = OneLineParser(prog="python -m fem_validation deck",
+                      description="Write a Hertz benchmark as input for another "
+                                  "finite-element code (fem_validation.decks).")
     decks.add_arguments(p)
-    args = p.parse_args(argv[1:])
     try:
+        args = p.parse_args(argv[1:])
         return decks.run(args, command=" ".join(["python -m fem_validation", *argv]))
     except (FEMValidationError, ValueError, OSError) as exc:
-        print(f"fem_validation: error: {exc}", file=sys.stderr)
+        print(f"fem_validation deck: error: {exc}".splitlines()[0], file=sys.stderr)
         return 2
 
 
@@ -123,21 +168,44 @@ def main(argv=None) -> int:
     argv = sys.argv[1:] if argv is None else list(argv)
     if argv[:1] == ["deck"]:
         return _deck(argv)
-    args = _parser().parse_args(argv)
+    if argv[:1] == ["grade"]:
+        from .grade_cli import main as grade_main
+
+        return grade_main(argv[1:])
+    try:
+        args = _parser().parse_args(argv)
+        _conflicts(args)
+        for alpha in args.alpha or []:
+            _alpha(alpha)
+        if args.curved:
+            levels = ([DEFAULT_CURVED_LEVEL] if args.level is None and args.levels is None
+                      else args.levels or [args.level])
+            bad = [x for x in levels if x not in CURVED_LEVELS]
+            if bad:
+                raise UsageError(f"--curved: levels must be in {list(CURVED_LEVELS)}, got {bad}")
+            if args.readme:
+                raise UsageError("--readme does not apply to --curved: merge curved.md and "
+                                 "curved.png by hand")
+        scenes = None
+        if not args.curved and not args.study:
+            scenes = [equal_steel(a) for a in args.alpha or []] + [_scene(n) for n in args.scene]
+        elif args.study:
+            study_scene = _scene(args.study)
+        if args.readme:
+            readme_section("fem-study" if args.study else "fem-validation")
+        prepare_out(args.out)
+    except (ValueError, FEMValidationError) as exc:
+        print(f"fem_validation: error: {exc}".splitlines()[0], file=sys.stderr)
+        return 2
     logging.basicConfig(level=logging.WARNING if args.quiet else logging.INFO,
                         format="%(asctime)s %(message)s", datefmt="%H:%M:%S")
     logging.getLogger("skfem").setLevel(logging.ERROR)
     try:
-        args.out.mkdir(parents=True, exist_ok=True)
         if args.curved:
-            if args.readme:
-                raise ValueError("--readme does not apply to --curved: merge curved.md and "
-                                 "curved.png by hand")
-            levels = ([DEFAULT_CURVED_LEVEL] if args.level is None and args.levels is None
-                      else args.levels or [args.level])
             command = " ".join(["python -m fem_validation", *argv])
-            _, json_path, md_path, png_path = run_curved(args.out, levels, args.a_over_r,
-                                                         command)
+            _, json_path, md_path, png_path = run_curved(
+                args.out, levels, A_OVER_R if args.a_over_r is None else args.a_over_r,
+                command)
             print(md_path.read_text())
             log.info("wrote %s, %s and %s", json_path, md_path, png_path)
             return 0
@@ -146,14 +214,14 @@ def main(argv=None) -> int:
         if args.levels is None:
             args.levels = list(DEFAULT_LEVELS)
         if args.study:
-            study = refinement_study(_scene(args.study), args.levels, args.out)
+            study = refinement_study(study_scene, args.levels, args.out,
+                                     command=" ".join(["python -m fem_validation", *argv]))
             print(json.dumps({k: study[k] for k in ("rates", "extrapolated", "three_level")},
                              indent=1))
             if args.readme:
-                publish("fem-study", (args.out / "study.md").read_text(),
+                publish("fem-study", study["readme"],
                         [(args.out / "study.png", f"{study['scene']}_study.png")])
             return 0
-        scenes = [equal_steel(a) for a in args.alpha or []] + [_scene(n) for n in args.scene]
         scenes = scenes or default_scenes()
         t0 = time.perf_counter()
         results = [validate(s, args.level, args.out, initial_active=args.initial_active,
@@ -163,14 +231,14 @@ def main(argv=None) -> int:
                   f"contact); {time.perf_counter() - t0:.0f} s in all on {cpu_count()} cores; "
                   f"`{command}`.\n")
         json_path, md_path = reports(results, args.out, header)
-        print(md_path.read_text())
+        print(report_markdown(results, header))
         if args.readme:
-            publish("fem-validation", md_path.read_text(),
+            publish("fem-validation", report_markdown(results, header),
                     [(args.out / f"{r.scene}_pressure.png", f"{r.scene}_pressure.png")
                      for r in results])
         log.info("wrote %s, %s and the VTU/PNG files in %s", json_path, md_path, args.out)
-    except (FEMValidationError, ValueError) as exc:
-        print(f"fem_validation: error: {exc}", file=sys.stderr)
+    except (FEMValidationError, ValueError, OSError) as exc:
+        print(f"fem_validation: error: {exc}".splitlines()[0], file=sys.stderr)
         return 2
     return 0
 

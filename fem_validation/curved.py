@@ -67,7 +67,7 @@ from .curved_mesh import (
     build_curved,
     sphere_plane,
 )
-from .curved_output import curved_markdown, plot_curved
+from .curved_output import curved_document, plot_curved
 from .elasticity import rigid_body_modes, stiffness
 from .errors import FEMValidationError
 from .grade import grade, moment_ellipse, nan_to_none
@@ -458,6 +458,6 @@ def run_curved(out: str | Path, levels=(DEFAULT_CURVED_LEVEL,), a_over_r=A_OVER_
     header = (f"Curved bodies, level {', '.join(map(str, levels))}; "
               f"{time.perf_counter() - t0:.0f} s in all on {os.cpu_count()} cores"
               + (f"; `{command}`" if command else "") + ".\n")
-    md_path.write_text(curved_markdown(results, header) + "\n")
+    md_path.write_text(curved_document(results, header, CURVED_TARGETS))
     plot_curved(results, png_path)
     return results, json_path, md_path, png_path

@@ -821,6 +821,8 @@ def grade(result: ContactResult, scene, tolerances: Mapping[str, float] | None =
     by_construction = set(result.details.get("by_construction", ()))
     if result.normal_force is not None:
         by_construction.add("pressure_integral_rel_err")
+    if symmetric:  # the axes lie in the symmetry planes
+        by_construction.add("angle_err_deg")
 
     stress_out, axis = {}, {}
     if stress and result.stress:

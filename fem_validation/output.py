@@ -149,9 +149,276 @@ def report_markdown(results: list[Comparison], header: str = "") -> str:
     return "\n".join(lines)
 
 
-def write_reports(results: list[Comparison], out: Path, header: str = "") -> tuple[Path, Path]:
-    """report.json (a list, one object per scene; NaN as null) and report.md."""
+#: What each column of report.md, study.md (and, with CURVED_MEANINGS, curved.md) holds.
+MEANINGS = {
+    "scene": "the scene (alpha-A: equal steel bodies with curvature ratio A)",
+    "level": "mesh level (each level divides every element size by sqrt 2)",
+    "alpha": "Hertz's curvature ratio rho_x / rho_y",
+    "load": "the contact force the run reached [N]; Hertz is evaluated at it",
+    "a_rel_err": "semi-major axis from the second moments of the nodal contact forces",
+    "b_rel_err": "semi-minor axis, likewise",
+    "p0_rel_err": "peak pressure of the least-squares fit of p^2 (nodes above 0.2 max p)",
+    "peak_nodal_rel_err": "largest nodal pressure (information)",
+    "rms_major": "RMS of (pressure - Hertz) along the major axis to 1.2 a, over p0",
+    "rms_minor": "as RMS major, along the minor axis to 1.2 b",
+    "edge_a_rel_err": "semi-major axis of the ellipse through the active set's edge "
+                      "(information)",
+    "edge_b_rel_err": "semi-minor axis of that ellipse (information)",
+    "approach_rel_err": "approach plus the blocks' Boussinesq settlement against Hertz's delta "
+                        "(information)",
+    "angle_err_deg": "major axis against Hertz's [deg], whole models only ('-': a quarter "
+                     "model has its axes by construction)",
+    "max_penetration_over_delta": "largest penetration of a contact pair over Hertz's delta "
+                                  "(penalty diagnostic)",
+    "von_mises_rel_err": "largest von Mises stress on the z axis (parabola vertex), the body "
+                         "with the larger error",
+    "z_von_mises_rel_err": "its depth, likewise",
+    "stress_rms_axis": "RMS of the six stress components' difference on the z axis (0.05 b "
+                       "to 3 b deep), over p0, the worse body",
+    "stress_rms_major_plane": "as stress RMS axis, in the plane through the major axis",
+    "stress_rms_minor_plane": "as stress RMS axis, in the plane through the minor axis",
+    "dofs": "unknowns of the linear system",
+    "seconds": "wall time: mesh, solve, comparison [s]",
+    "peak_memory_mb": "peak resident memory of the process during the run [MB]",
+}
+
+
+def _legend(columns, headers: dict, meanings: dict) -> list[str]:
+    return [f"- **{headers.get(k, k)}**: {meanings.get(k, k)}" for k in columns]
+
+
+def report_document(results: list, header: str, title: str, columns, headers: dict,
+                    meanings: dict, targets: dict, table: str, note: str = "") -> str:
+    """A report that stands alone: what was run, the sign convention, a legend of every
+    column, each check's tolerance, the table, and pass/fail per row."""
+    lines = [f"# {title}", "", "## What was run", "", header.strip(), "",
+             "## Sign convention", "",
+             "Errors are (FEM - Hertz) / Hertz, Hertz evaluated at the force the run reached "
+             "(matched force); RMS values are fractions of Hertz's p0; '-' where a value "
+             "does not apply.", "", "## Columns", ""]
+    lines += _legend(columns, headers, meanings)
+    lines += ["", "## Checks", "", "Each row passes when every one of these is within its "
+              "tolerance (|value| at most):", ""]
+    lines += [f"- {headers.get(k, k)} (`{k}`): {v:.2%}" for k, v in targets.items()]
+    if note:
+        lines += ["", note]
+    lines += ["", "## Results", "", table.strip(), "", "## Pass/fail", ""]
+    for r in results:
+        g = getattr(r, "grade", None)
+        failed = ([c.name for c in g.checks if c.status == "fail"] if g is not None else
+                  [k for k, v in targets.items() if not abs(getattr(r, k)) <= v])
+        label = f"{r.scene}, level {r.level}" + (
+            f", a/R {r.a_over_r:.3f}" if hasattr(r, "a_over_r") else "")
+        lines.append(f"- {label}: " + ("PASS" if not failed else
+                                       "FAIL (" + ", ".join(failed) + ")"))
+    return "\n".join(lines) + "\n"
+
+
+def write_reports(results: list[Comparison], out: Path, header: str = "",
+                  targets: dict | None = None) -> tuple[Path, Path]:
+    """report.json (a list, one object per scene; NaN as null) and report.md.
+
+    report.md stands alone (:func:`report_document`); the README's table is
+    :func:`report_markdown` of the same results.
+    """
+    from .compare import TARGETS
+
+    targets = TARGETS if targets is None else targets
     json_path, md_path = out / "report.json", out / "report.md"
     json_path.write_text(json.dumps([r.to_dict() for r in results], indent=1, default=float))
-    md_path.write_text(report_markdown(results, header) + "\n")
+    md_path.write_text(report_document(
+        results, header, "Finite elements against Hertz", [k for k, _ in COLUMNS], HEADERS,
+        MEANINGS, targets, report_markdown(results)))
     return json_path, md_path
+
+
+# --- a graded result: grade.json, grade.md, grade.png -----------------------------------
+
+SIGN_CONVENTION = ("Errors are (result - Hertz) / Hertz, Hertz evaluated at the force the "
+                   "result reached (matched force); RMS values are fractions of Hertz's p0.")
+
+
+def _fmt(name: str, value: float) -> str:
+    if value is None or (isinstance(value, float) and math.isnan(value)):
+        return "-"
+    if name == "angle_err_deg":
+        return f"{value:+.2f} deg"
+    if name.startswith(("rms_", "stress_rms_", "force_rel_err_rms")):
+        return f"{value:.2%}"
+    return f"{value:+.2%}"
+
+
+def _tol(name: str, tol) -> str:
+    if tol is None:
+        return "-"
+    return f"{tol:.2f} deg" if name == "angle_err_deg" else f"{tol:.2%}"
+
+
+def checks_table(checks, metrics_doc) -> list[str]:
+    """Markdown rows of a grade's checks: metric, meaning, value, tolerance, status."""
+    lines = ["| check | what it measures | value | tolerance | status |", "|---|---|---|---|---|"]
+    for ch in checks:
+        header, meaning = metrics_doc.get(ch.name, (ch.name, ""))
+        status = ch.status.upper() if ch.passed is not None else ch.status
+        lines.append(f"| {header} (`{ch.name}`) | {meaning} | {_fmt(ch.name, ch.value)} | "
+                     f"{_tol(ch.name, ch.tolerance)} | {status} |")
+    return lines
+
+
+def grade_markdown(g, command: str = "") -> str:
+    """grade.md: what was graded, the method, every check with its tolerance, the verdict."""
+    from .grade import CURVE_METRICS, METRICS
+
+    curve = g.details.get("kind") == "force-approach"
+    h = g.hertz
+    failed = [c.name for c in g.checks if c.status == "fail"]
+    lines = [f"# Grade against Hertz: {'PASSED' if g.passed else 'FAILED'}", ""]
+    lines += ["## What was graded", ""]
+    if command:
+        lines.append(f"- command: `{command}`")
+    lines += [f"- result: `{g.source or '-'}`", f"- scene: {g.scene}"]
+    if curve:
+        lines += [f"- a normal force against approach curve, {g.details['points']} points with "
+                  f"a positive approach; Hertz's force F(delta) of the scene's bodies at each "
+                  f"approach (`hertz.contact(..., approach=delta)`)",
+                  f"- largest force {g.force:.6g} N; Hertz there: a {h['a']:.6g} m, "
+                  f"b {h['b']:.6g} m, p0 {h['p0']:.6g} Pa, alpha {h['alpha']:.4g}"]
+    else:
+        d = g.details
+        method = ("second moments of the nodal forces" if g.semi_axes == "moments"
+                  else "least-squares fit of p^2")
+        lines += [f"- force (whole model, Hertz evaluated there): {g.force:.6g} N; symmetry "
+                  f"of the model: {g.symmetry} (forces of a quarter model x4, half x2)",
+                  f"- reader: {d.get('reader', '-')}, units of the file: {d.get('units', 'SI')}",
+                  f"- Hertz at that force: a {h['a']:.6g} m, b {h['b']:.6g} m, p0 "
+                  f"{h['p0']:.6g} Pa, delta {h['delta']:.6g} m, alpha {h['alpha']:.4g}, major "
+                  f"axis at {h['major_axis_angle_deg']:.3g} deg from body 1's x axis",
+                  f"- result: a {g.fem['a']:.6g} m, b {g.fem['b']:.6g} m (semi-axes from the "
+                  f"{method}), "
+                  f"p0 {g.fem['p0']:.6g} Pa (fit of p^2 above 20% of the largest pressure), "
+                  f"largest nodal pressure {g.fem['peak_nodal_pressure']:.6g} Pa"]
+    lines += ["", "## Sign convention", "", SIGN_CONVENTION, "",
+              "## Checks", "",
+              "Status: PASS / FAIL against the tolerance (|value| at most the tolerance); "
+              "*information*: reported, not checked (the edge of the pressed region moves "
+              "with how a code spreads pressure past the edge: 6-12% for CalculiX); *by "
+              "construction*: holds by the way the result was made, so it checks nothing; "
+              "*not available*: the result does not hold what it needs.", ""]
+    lines += checks_table(g.checks, {**METRICS, **CURVE_METRICS})
+    lines += ["", "## Verdict", "",
+              ("PASSED: every checked metric is within its tolerance." if g.passed else
+               f"FAILED: {', '.join(failed)} outside the tolerance.")]
+    if not curve:
+        lines += ["", "## Method", "", "See `fem_validation.grade`: a, b from the second "
+                  "moments of the nodal forces (sum f x^2 = P a^2/5 for Hertz's pressure) or "
+                  "from the p^2 fit; p0 from the fit; profiles: the nodal pressure "
+                  "interpolated on the surface triangles along Hertz's axes to 1.2 semi-axes; "
+                  "von Mises: the vertex of a parabola through the 5 axis nodes around the "
+                  "largest value; stress RMS: the nodal stress interpolated in the "
+                  "tetrahedra, 0.05 b to 3 b deep."]
+    return "\n".join(lines) + "\n"
+
+
+def plot_grade(g, path: Path) -> Path:
+    """grade.png: a figure that explains itself (legend, sign convention, tolerances)."""
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    curve = g.details.get("kind") == "force-approach"
+    values = ""
+    checked = [c for c in g.checks if c.tolerance is not None and c.passed is not None]
+    fig, axes = plt.subplots(1, 3, figsize=(16, 5.2),
+                             gridspec_kw={"width_ratios": [1, 1, 1.1]})
+    h = g.hertz
+    if curve:
+        d, f, ref = (np.asarray(g.fem[k]) for k in ("approach", "force", "hertz_force"))
+        axes[0].loglog(d * 1e6, ref, "-", color="k", label="Hertz F(delta)")
+        axes[0].loglog(d * 1e6, f, "o", ms=3, color="C3", label="result")
+        axes[0].set_xlabel("approach delta [um]")
+        axes[0].set_ylabel("normal force [N]")
+        axes[0].set_title("force against approach", fontsize=9)
+        axes[1].plot(d * 1e6, 100 * np.asarray(g.fem["rel_err"]), "o-", ms=3, color="C3",
+                     label="(F - F_Hertz) / F_Hertz")
+        tol = g.check("force_rel_err_max").tolerance
+        if tol is not None:
+            for s in (-1, 1):
+                axes[1].axhline(100 * s * tol, color="0.5", ls=":",
+                                label="tolerance" if s > 0 else None)
+        axes[1].set_xlabel("approach delta [um]")
+        axes[1].set_ylabel("relative force error [%]")
+        axes[1].set_title("error along the curve", fontsize=9)
+    else:
+        for ax, name, semi in zip(axes[:2], ("major", "minor"), (h["a"], h["b"]), strict=True):
+            d = g.profiles[name]
+            ax.plot(d["s"] / semi, d["hertz"] / h["p0"], "-", color="k",
+                    label="Hertz at the force reached")
+            ax.plot(d["s"] / semi, d["fem"] / h["p0"], "o", ms=3, color="C3",
+                    label=f"result, interpolated (RMS {d['rms']:.1%} of p0)")
+            ax.set_xlabel(f"distance along Hertz's {name} axis / Hertz's "
+                          f"{'a' if name == 'major' else 'b'}")
+            ax.set_title(f"contact pressure along Hertz's {name} axis", fontsize=9)
+        axes[0].set_ylabel("pressure / Hertz's p0")
+        values = (f"\nHertz: a = {h['a']:.4g} m, b = {h['b']:.4g} m, p0 = {h['p0']:.4g} Pa;  "
+                  f"result: a = {g.fem['a']:.4g} m, b = {g.fem['b']:.4g} m (from the "
+                  f"{g.semi_axes}), p0 = {g.fem['p0']:.4g} Pa (p^2 fit)")
+    for ax in axes[:2]:
+        ax.grid(True, alpha=0.3)
+        ax.legend(fontsize=7, loc="upper right")
+    ax = axes[2]
+    names = [c.name for c in checked]
+    ratio = [abs(c.value) / c.tolerance for c in checked]
+    colors = ["C2" if c.passed else "C3" for c in checked]
+    ax.barh(range(len(names)), ratio, color=colors)
+    ax.axvline(1.0, color="k", lw=1)
+    ax.set_yticks(range(len(names)))
+    ax.set_yticklabels([f"{n} = {_fmt(n, c.value)} (tol {_tol(n, c.tolerance)})"
+                        for n, c in zip(names, checked, strict=True)], fontsize=7)
+    ax.invert_yaxis()
+    ax.set_xlabel("|value| / tolerance (1 = the limit)")
+    ax.set_title("checks (green pass, red fail)", fontsize=9)
+    fig.suptitle(f"{g.source or g.scene} against Hertz ({g.scene}): "
+                 f"{'PASSED' if g.passed else 'FAILED'}; force {g.force:.5g} N"
+                 f"{'' if curve else f' (whole model, {g.symmetry} model)'}.  "
+                 f"Errors: (result - Hertz) / Hertz at matched force.{values}", fontsize=9)
+    fig.tight_layout()
+    fig.savefig(path, dpi=110)
+    plt.close(fig)
+    return path
+
+
+def write_grade(g, out: Path, command: str = "") -> tuple[Path, Path, Path]:
+    """DIR/grade.json, DIR/grade.md and DIR/grade.png of a Grade."""
+    out = Path(out)
+    paths = out / "grade.json", out / "grade.md", out / "grade.png"
+    row = g.to_dict()
+    if command:
+        row["command"] = command
+    if g.details.get("kind") == "force-approach":
+        row["fem"] = {k: (v.tolist() if hasattr(v, "tolist") else v) for k, v in g.fem.items()}
+    paths[0].write_text(json.dumps(row, indent=1, default=float))
+    paths[1].write_text(grade_markdown(g, command))
+    plot_grade(g, paths[2])
+    return paths
+
+
+def prepare_out(path) -> Path:
+    """The output directory, created; ValueError (one line) where it cannot be written.
+
+    Refused: an existing file, a directory that cannot be created, one where no file
+    can be written (probed by creating and removing a temporary file).
+    """
+    import tempfile
+
+    path = Path(path)
+    if path.exists() and not path.is_dir():
+        raise ValueError(f"--out {str(path)!r} exists and is not a directory")
+    try:
+        path.mkdir(parents=True, exist_ok=True)
+        with tempfile.NamedTemporaryFile(dir=path, prefix=".probe"):
+            pass
+    except OSError as exc:
+        raise ValueError(f"--out {str(path)!r} cannot be written: "
+                         f"{exc.strerror or exc}") from None
+    return path

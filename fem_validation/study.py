@@ -24,9 +24,9 @@ from pathlib import Path
 
 import numpy as np
 
-from .compare import Comparison
+from .compare import TARGETS, Comparison
 from .mesh import LEVEL_H0, LEVEL_RATIO
-from .output import report_markdown
+from .output import COLUMNS, HEADERS, MEANINGS, report_document, report_markdown
 from .scenes import Scene
 
 #: Quantities whose rates are reported.
@@ -95,8 +95,11 @@ def richardson_with_order(e_coarse: float, e_fine: float, ratio: float, order: f
     return e_fine - (e_coarse - e_fine) / (ratio**order - 1)
 
 
-def refinement_study(scene: Scene, levels, out: Path) -> dict:
+def refinement_study(scene: Scene, levels, out: Path, command: str = "") -> dict:
     """Run ``scene`` at each mesh level; write study.json, study.md and study.png in ``out``.
+
+    The returned record also holds ``readme``: the header and table the README shows
+    (study.md adds what was run, the legend, the sign convention and the checks).
 
     Raises
     ------
@@ -119,13 +122,19 @@ def refinement_study(scene: Scene, levels, out: Path) -> dict:
                           for q, rate in study["rates"].items())
     extra = ", ".join(f"{q.removesuffix('_rel_err')} {v:+.3f}%"
                       for q, v in ((q, 100 * v) for q, v in study["extrapolated"].items()))
-    (out / "study.md").write_text(
-        report_markdown(results, f"Refinement study of {scene.name}, levels {levels} (every "
-                        f"element size divided by {LEVEL_RATIO:.3g} per level); observed rates "
-                        f"(slope of log|error| against log h): {rate_line}. Richardson's "
-                        f"extrapolation to h = 0 (two finest levels, observed rates): "
-                        f"{extra}.\n")
-        + "\n")
+    header = (f"Refinement study of {scene.name}, levels {levels} (every "
+              f"element size divided by {LEVEL_RATIO:.3g} per level); observed rates "
+              f"(slope of log|error| against log h): {rate_line}. Richardson's "
+              f"extrapolation to h = 0 (two finest levels, observed rates): "
+              f"{extra}.\n")
+    table = report_markdown(results, header)
+    run = header + (f"\nCommand: `{command}`." if command else "")
+    (out / "study.md").write_text(report_document(
+        results, run, f"Refinement study of {scene.name}", [k for k, _ in COLUMNS], HEADERS,
+        MEANINGS, TARGETS, report_markdown(results),
+        note="The targets are those of the default level (4); coarser levels are expected "
+             "to miss them: the rates and the extrapolation are the study's result."))
+    study["readme"] = table
     _plot(scene, np.array(study["h_over_b"]), results, study["rates"], out / "study.png")
     return study
 

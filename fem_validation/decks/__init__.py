@@ -24,10 +24,9 @@ from __future__ import annotations
 
 import argparse
 import math
-import tomllib
 from pathlib import Path
 
-from ..scenes import Scene
+from ..scenes import Scene, scene_from_toml
 from .inp import UNITS, write_inp
 from .meshes import write_mesh, write_problem
 from .model import PENALTY_FACTOR, DeckModel, build_model
@@ -39,77 +38,25 @@ FORMATS = ("calculix", "abaqus", "msh", "med", "exodus", "xdmf")
 #: Default mesh level of a deck: coarse enough for a laptop (the curved levels are 0-4,
 #: the block levels 0-5).
 DEFAULT_DECK_LEVEL = 1
-_BODY_KEYS = ("Rx", "Ry", "E", "nu")
 
 
 def read_scene(path) -> Scene:
-    """A :class:`Scene` from a ``hertz`` TOML scene file (SI units).
+    """A :class:`Scene` with its target load from a ``hertz`` TOML scene file (SI units).
 
-    The file needs [body1] and [body2] with Rx, Ry, E, nu, and one of
-    ``load`` [N] or ``approach`` [m]; ``angle_deg`` and ``name`` are optional.
+    :func:`fem_validation.scenes.scene_from_toml`, which also needs one of
+    ``load`` [N] or ``approach`` [m] here: a deck prescribes the approach that
+    reaches the target load.
 
     Raises
     ------
     ValueError
-        Naming the file and the key: unreadable file, invalid TOML, a missing
-        or unknown key, a value that is not a number, no Hertz contact.
+        Naming the file and the key (see scene_from_toml), or the missing target.
     """
-    path = Path(path)
-    try:
-        with open(path, "rb") as f:
-            data = tomllib.load(f)
-    except OSError as exc:
-        raise ValueError(f"cannot read scene file {str(path)!r}: {exc.strerror}") from None
-    except (tomllib.TOMLDecodeError, UnicodeDecodeError) as exc:
-        raise ValueError(f"scene file {str(path)!r} is not valid TOML: {exc}") from None
-    unknown = set(data) - {"name", "load", "approach", "angle_deg", "body1", "body2"}
-    if unknown:
-        raise ValueError(f"scene file {str(path)!r}: unknown key(s) {', '.join(sorted(unknown))}")
-
-    def number(value, key):
-        if isinstance(value, bool) or not isinstance(value, (int, float, str)):
-            raise ValueError(f"scene file {str(path)!r}: {key} must be a number, got {value!r}")
-        try:
-            return float(value)
-        except ValueError:
-            raise ValueError(f"scene file {str(path)!r}: {key} must be a number, "
-                             f"got {value!r}") from None
-
-    import hertz
-
-    bodies = []
-    for name in ("body1", "body2"):
-        spec = data.get(name)
-        if not isinstance(spec, dict):
-            raise ValueError(f"scene file {str(path)!r}: [{name}] table missing")
-        missing = [k for k in _BODY_KEYS if k not in spec]
-        extra = set(spec) - set(_BODY_KEYS)
-        if missing or extra:
-            raise ValueError(f"scene file {str(path)!r}: [{name}] needs exactly "
-                             f"{', '.join(_BODY_KEYS)}"
-                             + (f"; missing {', '.join(missing)}" if missing else "")
-                             + (f"; unknown {', '.join(sorted(extra))}" if extra else ""))
-        try:
-            bodies.append(hertz.Body(**{k: number(spec[k], f"{name}.{k}") for k in _BODY_KEYS}))
-        except (TypeError, ValueError) as exc:
-            raise ValueError(f"scene file {str(path)!r}: [{name}]: {exc}") from None
-    angle = math.radians(number(data.get("angle_deg", 0.0), "angle_deg"))
-    if ("load" in data) == ("approach" in data):
-        raise ValueError(f"scene file {str(path)!r}: give exactly one of load [N] and "
-                         f"approach [m]")
-    try:
-        if "load" in data:
-            load = number(data["load"], "load")
-            hertz.contact(*bodies, load=load, angle=angle)
-        else:
-            load = hertz.contact(*bodies, angle=angle,
-                                 approach=number(data["approach"], "approach")).load
-    except (TypeError, ValueError) as exc:
-        raise ValueError(f"scene file {str(path)!r}: {exc}") from None
-    name = data.get("name", path.stem)
-    if not isinstance(name, str):
-        raise ValueError(f"scene file {str(path)!r}: name must be a string, got {name!r}")
-    return Scene(name, bodies[0], bodies[1], load, angle)
+    scene = scene_from_toml(path)
+    if not math.isfinite(scene.load):
+        raise ValueError(f"scene file {str(path)!r}: a deck needs the target: give load [N] "
+                         f"or approach [m]")
+    return scene
 
 
 def write_deck(scene: Scene, fmt: str, out, units: str = "mm", level: int = DEFAULT_DECK_LEVEL,

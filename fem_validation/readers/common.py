@@ -160,7 +160,7 @@ def finish(points, pressure, normal_force, force, symmetry, frame, triangles=Non
                          details=dict(details or {}))
 
 
-def read_result(path, *, units: str = "SI", symmetry: str | None = None,
+def read_result(path, *, units: str | None = None, symmetry: str | None = None,
                 force: float | None = None, frame: ContactFrame | None = None,
                 fields: dict | None = None) -> ContactResult:
     """A ContactResult from a file, by its extension: ``.csv`` (:mod:`.table`), ``.frd``
@@ -169,7 +169,8 @@ def read_result(path, *, units: str = "SI", symmetry: str | None = None,
     Parameters
     ----------
     path : path
-    units : {"SI", "m", "mm"}
+    units : {"SI", "m", "mm"}, optional
+        Default: a CSV's ``# units`` line, else SI.
     symmetry : {"whole", "half", "quarter"}, optional
         Detected where not given.
     force : float, optional
@@ -188,7 +189,8 @@ def read_result(path, *, units: str = "SI", symmetry: str | None = None,
     path = Path(path)
     if not path.is_file():
         raise ResultError(f"{path}: no such file")
-    units_of(units, f"{path}: ")
+    if units is not None:
+        units_of(units, f"{path}: ")
     kwargs = {"units": units, "symmetry": symmetry, "force": force, "frame": frame,
               "fields": dict(fields or {})}
     suffix = path.suffix.lower()

@@ -151,7 +151,7 @@ def _bodies(mesh, n_points: int):
     return labels, corners
 
 
-def read_mesh(path, *, units: str = "SI", symmetry: str | None = None,
+def read_mesh(path, *, units: str | None = None, symmetry: str | None = None,
               force: float | None = None, frame: ContactFrame | None = None,
               fields: dict | None = None) -> ContactResult:
     """A ContactResult from a mesh file meshio reads (see the module docstring).
@@ -167,6 +167,7 @@ def read_mesh(path, *, units: str = "SI", symmetry: str | None = None,
     path = Path(path)
     src = str(path)
     fields = dict(fields or {})
+    units = units or "SI"
     try:
         mesh = meshio.read(path)
     except Exception as exc:  # meshio raises many types for files it cannot read

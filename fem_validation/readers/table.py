@@ -38,18 +38,8 @@ def _number(text: str, where: str) -> float:
         raise ResultError(f"{where}: {text!r} is not a number") from None
 
 
-def read_csv(path, *, units: str | None = None, symmetry: str | None = None,
-             force: float | None = None, frame: ContactFrame | None = None,
-             fields: dict | None = None) -> ContactResult:
-    """A ContactResult from a CSV of the contact surface (see the module docstring).
-
-    Raises
-    ------
-    ResultError
-        Naming the file, the row and the column: no pressure column, a value that
-        is not a number, NaN, an empty contact, no force.
-    """
-    path = Path(path)
+def _parse(path: Path):
+    """(meta {key: (text, line)}, header [names], rows [(line, cells)]) of a CSV."""
     src = str(path)
     meta, header, rows = {}, None, []
     try:
@@ -74,7 +64,24 @@ def read_csv(path, *, units: str | None = None, symmetry: str | None = None,
     except UnicodeDecodeError:
         raise ResultError(f"{src}: not a text (UTF-8) CSV file") from None
     if header is None or not rows:
-        raise ResultError(f"{src}: no header row and data rows (x, y, p)")
+        raise ResultError(f"{src}: no header row and data rows")
+    return meta, header, rows
+
+
+def read_csv(path, *, units: str | None = None, symmetry: str | None = None,
+             force: float | None = None, frame: ContactFrame | None = None,
+             fields: dict | None = None) -> ContactResult:
+    """A ContactResult from a CSV of the contact surface (see the module docstring).
+
+    Raises
+    ------
+    ResultError
+        Naming the file, the row and the column: no pressure column, a value that
+        is not a number, NaN, an empty contact, no force.
+    """
+    path = Path(path)
+    src = str(path)
+    meta, header, rows = _parse(path)
     fields = dict(fields or {})
 
     def column(names, role):
@@ -135,3 +142,33 @@ def read_csv(path, *, units: str | None = None, symmetry: str | None = None,
 
         result = replace(result, active=table[:, ia] != 0)
     return result
+
+
+def read_force_approach(path, units: str | None = None) -> tuple[np.ndarray, np.ndarray, str]:
+    """A force against approach curve from a CSV: (approach [m], force [N], units).
+
+    Columns: ``approach`` (or ``overlap``, ``delta``) and ``force`` (or ``f``,
+    ``fn``); ``# units = mm`` (or ``units``) scales the approach from mm.
+
+    Raises
+    ------
+    ResultError
+        Naming the file, the line and the column.
+    """
+    path = Path(path)
+    src = str(path)
+    meta, header, rows = _parse(path)
+    ia = next((header.index(n) for n in ("approach", "overlap", "delta") if n in header), None)
+    jf = next((header.index(n) for n in ("force", "f", "fn", "normal_force") if n in header),
+              None)
+    if ia is None or jf is None:
+        raise ResultError(f"{src}: needs an approach column (approach, overlap, delta) and a "
+                          f"force column (force, f, fn); columns: {', '.join(header)}")
+    values = np.empty((len(rows), 2))
+    for k, (lineno, cells) in enumerate(rows):
+        for col, j in enumerate((ia, jf)):
+            values[k, col] = _number(cells[j].strip(), f"{src}, line {lineno}, column "
+                                                       f"{header[j]!r}")
+    units = units or (meta["units"][0] if "units" in meta else "SI")
+    length, force_unit, _ = units_of(units, f"{src}: ")
+    return values[:, 0] * length, values[:, 1] * force_unit, units

@@ -1,0 +1,177 @@
+"""``python -m fem_validation grade``: grade another code's result file against Hertz.
+
+    python -m fem_validation grade RESULT --scene FILE.toml [--units mm]
+        [--symmetry quarter] [--force N] [--tolerance NAME=VALUE ...] --out DIR
+    python -m fem_validation grade --force-approach CURVE.csv --scene FILE.toml --out DIR
+
+Writes DIR/grade.json, DIR/grade.md and DIR/grade.png.  Exit status 0 when every
+check passes, 1 when one fails, 2 for bad input (one line on stderr naming the
+file and the field), so that other projects can run it in their CI.
+"""
+
+from __future__ import annotations
+
+import argparse
+import math
+import sys
+import tomllib
+from pathlib import Path
+
+from .grade import CURVE_METRICS, CURVE_TOLERANCES, DEFAULT_TOLERANCES, METRICS
+
+
+class UsageError(ValueError):
+    """A command line that cannot be run (one line, exit status 2)."""
+
+
+class OneLineParser(argparse.ArgumentParser):
+    """argparse with its errors as one-line UsageErrors instead of usage + exit."""
+
+    def error(self, message):
+        raise UsageError(f"{self.prog}: {message}")
+
+
+def _vector(text: str) -> list[float]:
+    try:
+        v = [float(x) for x in text.replace(",", " ").split()]
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"not three numbers: {text!r}") from None
+    if len(v) != 3 or not all(math.isfinite(x) for x in v):
+        raise argparse.ArgumentTypeError(f"not three finite numbers: {text!r}")
+    return v
+
+
+def _positive(text: str) -> float:
+    try:
+        x = float(text)
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"not a number: {text!r}") from None
+    if not (math.isfinite(x) and x > 0):
+        raise argparse.ArgumentTypeError(f"must be a finite number > 0, got {text!r}")
+    return x
+
+
+def parser() -> OneLineParser:
+    p = OneLineParser(prog="python -m fem_validation grade",
+                      description="Grade a contact result of any finite-element code (or a "
+                                  "DEM force-approach curve) against Hertz.")
+    p.add_argument("result", nargs="?", type=Path,
+                   help="result file: .csv (x, y, p), .frd (CalculiX), or any meshio format "
+                        "(.vtu, .xdmf, .exo, .med, ...)")
+    p.add_argument("--scene", type=Path, required=True, metavar="FILE.toml",
+                   help="the two bodies: a hertz TOML scene file (SI)")
+    p.add_argument("--force-approach", type=Path, metavar="CURVE.csv",
+                   help="grade a normal force against approach curve (columns approach, "
+                        "force) instead of a result file")
+    p.add_argument("--units", choices=("SI", "m", "mm"),
+                   help="units of the file: SI (m, N, Pa) or mm (mm, N, MPa); default SI or "
+                        "the CSV's '# units' line")
+    p.add_argument("--symmetry", choices=("whole", "half", "quarter"),
+                   help="the model in the file (default: detected)")
+    p.add_argument("--force", type=_positive, metavar="N",
+                   help="total normal force of the model in the file (a quarter model's own "
+                        "reaction), in the file's force unit; default from the file")
+    for role in ("pressure", "normal-force", "reaction", "stress"):
+        p.add_argument(f"--{role}-field", metavar="NAME[:COMPONENT]",
+                       help=f"name of the {role.replace('-', ' ')} field (default: recognised)")
+    p.add_argument("--origin", type=_vector, metavar="X,Y,Z",
+                   help="contact point in the file's coordinates and units (default: found)")
+    p.add_argument("--normal", type=_vector, metavar="X,Y,Z",
+                   help="contact normal pointing into body 1 (default: found, along +z)")
+    p.add_argument("--x-axis", type=_vector, metavar="X,Y,Z",
+                   help="body 1's x axis in the contact plane (default: the file's x axis)")
+    p.add_argument("--semi-axes", choices=("auto", "moments", "fit"), default="auto",
+                   help="a, b from the moments of the nodal forces or from the p^2 fit "
+                        "(default: moments where nodal forces are given, else the fit)")
+    p.add_argument("--tolerance", action="append", default=[], metavar="NAME=VALUE",
+                   help="override a tolerance (repeatable), e.g. p0_rel_err=0.01")
+    p.add_argument("--tolerances", type=Path, metavar="FILE.toml",
+                   help="tolerances from a TOML file (NAME = VALUE lines)")
+    p.add_argument("--out", type=Path, default=Path("grade_out"), help="output directory")
+    return p
+
+
+def tolerances_from(args, defaults: dict, metrics: dict) -> dict:
+    """The defaults, then the TOML file, then --tolerance NAME=VALUE."""
+    tol = dict(defaults)
+    if args.tolerances is not None:
+        try:
+            with open(args.tolerances, "rb") as f:
+                table = tomllib.load(f)
+        except OSError as exc:
+            raise UsageError(f"cannot read tolerances file {str(args.tolerances)!r}: "
+                             f"{exc.strerror}") from None
+        except (tomllib.TOMLDecodeError, UnicodeDecodeError) as exc:
+            raise UsageError(f"tolerances file {str(args.tolerances)!r} is not valid TOML: "
+                             f"{exc}") from None
+        for name, value in table.items():
+            if isinstance(value, bool) or not isinstance(value, int | float):
+                raise UsageError(f"tolerances file {str(args.tolerances)!r}: {name} must be "
+                                 f"a number, got {value!r}")
+            tol[name] = float(value)
+    for item in args.tolerance:
+        name, sep, value = item.partition("=")
+        try:
+            tol[name.strip()] = float(value)
+        except ValueError:
+            raise UsageError(f"--tolerance {item!r}: expected NAME=VALUE with a number") from None
+        if not sep:
+            raise UsageError(f"--tolerance {item!r}: expected NAME=VALUE")
+    for name, value in tol.items():
+        if name not in metrics:
+            raise UsageError(f"tolerance {name!r}: unknown metric; known: "
+                             f"{', '.join(sorted(metrics))}")
+        if not (math.isfinite(value) and value > 0):
+            raise UsageError(f"tolerance {name}: must be a finite number > 0, got {value!r}")
+    return tol
+
+
+def run(argv: list[str]) -> int:
+    """Parse, grade, write; return the exit status (errors are raised as ValueError)."""
+    from . import output
+    from .grade import grade, grade_force_approach
+    from .readers.common import read_result, units_of
+    from .readers.table import read_force_approach
+    from .result import ContactFrame
+    from .scenes import scene_from_toml
+
+    args = parser().parse_args(argv)
+    command = " ".join(["python -m fem_validation grade", *argv])
+    if (args.result is None) == (args.force_approach is None):
+        raise UsageError("python -m fem_validation grade: give a RESULT file or "
+                         "--force-approach CURVE.csv (one of them)")
+    out = output.prepare_out(args.out)
+    scene = scene_from_toml(args.scene)
+    if args.force_approach is not None:
+        tol = tolerances_from(args, CURVE_TOLERANCES, CURVE_METRICS)
+        approach, force, _ = read_force_approach(args.force_approach, args.units)
+        g = grade_force_approach(approach, force, scene, tol, source=str(args.force_approach))
+    else:
+        tol = tolerances_from(args, DEFAULT_TOLERANCES, METRICS)
+        frame = None
+        if args.origin or args.normal or args.x_axis:
+            length = units_of(args.units or "SI")[0]
+            frame = ContactFrame(origin=[length * x for x in (args.origin or (0, 0, 0))],
+                                 normal=args.normal or (0, 0, 1),
+                                 x_axis=args.x_axis or (1, 0, 0), source=str(args.result))
+        fields = {k: v for k, v in (("pressure", args.pressure_field),
+                                    ("normal_force", args.normal_force_field),
+                                    ("reaction", args.reaction_field),
+                                    ("stress", args.stress_field)) if v is not None}
+        result = read_result(args.result, units=args.units, symmetry=args.symmetry,
+                             force=args.force, frame=frame, fields=fields)
+        g = grade(result, scene, tol, semi_axes=args.semi_axes)
+    json_path, md_path, png_path = output.write_grade(g, out, command)
+    verdict = "PASSED" if g.passed else "FAILED: " + ", ".join(
+        c.name for c in g.checks if c.status == "fail")
+    print(f"{verdict}; wrote {json_path}, {md_path}, {png_path}")
+    return 0 if g.passed else 1
+
+
+def main(argv=None) -> int:
+    argv = sys.argv[1:] if argv is None else list(argv)
+    try:
+        return run(argv)
+    except (ValueError, OSError) as exc:
+        print(f"fem_validation grade: error: {exc}".splitlines()[0], file=sys.stderr)
+        return 2
