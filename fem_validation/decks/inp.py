@@ -121,7 +121,7 @@ def write_inp(model: DeckModel, path, units: str = "mm", dialect: str = "calculi
     else:
         out += ["*STEP, NLGEOM=NO, INC=100", "*STATIC", "1., 1., 1e-5, 1.",
                 "*BOUNDARY", f"MOVED, 3, 3, {_g(-model.approach * ul)}",
-                "*OUTPUT, FIELD", "*NODE OUTPUT", "U, RF", "*ELEMENT OUTPUT, POSITION=NODES",
+                "*OUTPUT, FIELD", "*NODE OUTPUT", "U, RF", "*ELEMENT OUTPUT",
                 "S", "*CONTACT OUTPUT", "CSTRESS, CDISP",
                 "*NODE PRINT, NSET=MOVED, TOTALS=YES", "RF", "*END STEP"]
     with open(path, "w") as f:

@@ -140,7 +140,8 @@ def _symmetry(xyz: np.ndarray) -> str:
 
 def read_calculix(path, inp=None, units: str | None = None, symmetry: str | None = None,
                   problem=None, stress: bool = True, tetrahedra: bool = False,
-                  ) -> ContactResult:
+                  force: float | None = None, frame: ContactFrame | None = None,
+                  pressure_name: str = "CPRESS") -> ContactResult:
     """Read a CalculiX .frd (ASCII or binary) into a contact result in SI.
 
     Parameters
@@ -157,6 +158,13 @@ def read_calculix(path, inp=None, units: str | None = None, symmetry: str | None
         problem.json of :mod:`fem_validation.decks` (default: beside the .frd).
     stress : bool
         Read the nodal stresses of both bodies (the von Mises maxima on the axis).
+    force : float, optional
+        The total normal force of the model in the file [N]: replaces body 1's
+        reaction (times the multiplicity) as the result's force.
+    frame : ContactFrame, optional
+        The contact frame [m]; default problem.json's, else the standard frame.
+    pressure_name : str
+        The contact pressure's component name (default CPRESS).
     tetrahedra : bool
         Also hand the grader each body's corner tetrahedra, for the stress-field
         RMS.  Off by default: the grader samples that field at depths below the
@@ -183,16 +191,23 @@ def read_calculix(path, inp=None, units: str | None = None, symmetry: str | None
         raise ResultError(str(exc)) from None
     problem_path = Path(problem) if problem is not None else path.parent / "problem.json"
     info = json.loads(problem_path.read_text()) if problem_path.is_file() else None
+    if info:
+        own = {"mm": "mm", "m": "SI"}.get(info["units"]["length"], info["units"]["length"])
+        if units is not None and UNIT_FACTORS.get(units) != UNIT_FACTORS.get(own):
+            raise ResultError(f"{source}: units {units!r} contradict {problem_path}, which "
+                              f"says the deck is in {own} ({info['units']['length']}, "
+                              f"{info['units']['stress']}): give units {own!r}")
+        units = own
     if units is None:
-        units = info["units"]["length"] if info else "mm"
+        units = "mm"
     if units not in UNIT_FACTORS:
         raise ResultError(f"{source}: units must be one of mm, SI, got {units!r}")
     to_m, to_pa = UNIT_FACTORS[units]
-    if not any("CPRESS" in r.components for r in frd.results):
-        raise ResultError(f"{source}: no contact pressure (CPRESS) in the file: the deck needs "
-                          f"*CONTACT FILE (or *CONTACT OUTPUT) with CSTR; it has "
+    if not any(pressure_name in r.components for r in frd.results):
+        raise ResultError(f"{source}: no contact pressure ({pressure_name}) in the file: the "
+                          f"deck needs *CONTACT FILE (or *CONTACT OUTPUT) with CSTR; it has "
                           f"{', '.join(frd.component_names) or 'no results'}")
-    cnodes, cpress = frd.field("CPRESS")
+    cnodes, cpress = frd.field(pressure_name)
     inp_path = Path(inp) if inp is not None else path.with_suffix(".inp")
     if inp_path.is_file():
         name, faces, nodes = slave_surface(inp_path)
@@ -230,12 +245,14 @@ def read_calculix(path, inp=None, units: str | None = None, symmetry: str | None
     if mult is None:
         raise ResultError(f"{source}: symmetry must be whole, half or quarter, got {sym!r}")
     reactions = [mult * abs(float(rz[np.isin(rnodes, n)].sum())) for n in body_nodes]
-    force, reaction = reactions
+    reaction = reactions[1]
+    force = reactions[0] if force is None else mult * float(force)
 
     details = {"solver": "CalculiX", "file": source, "units": units, "contact_surface": how,
                "nodes": len(frd.nodes), "elements": len(frd.elements),
                "version": next((h.split(None, 1)[1].strip() for h in frd.headers
                                 if h.startswith("VERSION")), "")}
+    given_frame = frame
     frame = ContactFrame(source=source)
     approach = None
     if info:
@@ -249,6 +266,8 @@ def read_calculix(path, inp=None, units: str | None = None, symmetry: str | None
                     "slave": info["contact"]["slave"],
                     "approach_note": "prescribed approach plus the Boussinesq settlement of "
                                      "half-spaces at the far faces' depths, at the force"}
+    if given_frame is not None:
+        frame = given_frame
     bodies = []
     if stress and any(r.name == "STRESS" for r in frd.results):
         st = frd.result("STRESS")
