@@ -14,6 +14,13 @@ pyamg, matplotlib); the geometry is meshes/blocks.geo (see
 
 True curved bodies (a ball on a plane and in a groove, node-to-surface contact):
 ``fem_validation.curved`` (``python -m fem_validation --curved``).
+
+Any other code's result: fill a :class:`ContactResult` (``fem_validation.result``; or
+read a file with ``fem_validation.readers.common.read_result``) and grade it with
+``fem_validation.grade.grade(result, scene)`` (a scene: ``scene_from_toml``);
+``python -m fem_validation grade RESULT --scene FILE --out DIR`` does both and writes
+grade.json, grade.md and grade.png.  Our own blocks and curved bodies go through the
+same grade.
 """
 
 from __future__ import annotations
@@ -34,9 +41,18 @@ from .curved import (
 )
 from .curved_mesh import DEFAULT_CURVED_LEVEL, CurvedScene, ball_groove, build_curved, sphere_plane
 from .errors import FEMValidationError
+from .grade import DEFAULT_TOLERANCES, Grade  # the function: fem_validation.grade.grade
 from .mesh import DEFAULT_LEVEL, LEVEL_H0, LEVEL_SCALE, BlockMesh, build
 from .output import plot_profiles, write_reports, write_vtu
-from .scenes import Scene, crossed_30deg, default_scenes, equal_steel, steel_on_aluminium
+from .result import BodyStress, ContactFrame, ContactResult, ResultError
+from .scenes import (
+    Scene,
+    crossed_30deg,
+    default_scenes,
+    equal_steel,
+    scene_from_toml,
+    steel_on_aluminium,
+)
 from .solve import (
     KAPPA,
     REBUILD_FRACTION,
@@ -49,17 +65,23 @@ __all__ = [
     "A_OVER_R",
     "DEFAULT_CURVED_LEVEL",
     "DEFAULT_LEVEL",
+    "DEFAULT_TOLERANCES",
     "KAPPA",
     "LEVEL_H0",
     "LEVEL_SCALE",
     "NESTED_REBUILD_FRACTION",
     "TARGETS",
     "BlockMesh",
+    "BodyStress",
     "Comparison",
+    "ContactFrame",
+    "ContactResult",
     "ContactSolution",
     "CurvedComparison",
     "CurvedScene",
     "FEMValidationError",
+    "Grade",
+    "ResultError",
     "Scene",
     "ball_groove",
     "build",
@@ -71,6 +93,7 @@ __all__ = [
     "default_scenes",
     "equal_steel",
     "run_curved",
+    "scene_from_toml",
     "solve_contact",
     "solve_curved",
     "sphere_plane",

@@ -75,7 +75,8 @@ def parser() -> OneLineParser:
         p.add_argument(f"--{role}-field", metavar="NAME[:COMPONENT]",
                        help=f"name of the {role.replace('-', ' ')} field (default: recognised)")
     p.add_argument("--origin", type=_vector, metavar="X,Y,Z",
-                   help="contact point in the file's coordinates and units (default: found)")
+                   help="contact point in the file's coordinates, in --units (default: found; "
+                        "what is not given of origin, normal, x axis is found)")
     p.add_argument("--normal", type=_vector, metavar="X,Y,Z",
                    help="contact normal pointing into body 1 (default: found, along +z)")
     p.add_argument("--x-axis", type=_vector, metavar="X,Y,Z",
@@ -148,12 +149,11 @@ def run(argv: list[str]) -> int:
         g = grade_force_approach(approach, force, scene, tol, source=str(args.force_approach))
     else:
         tol = tolerances_from(args, DEFAULT_TOLERANCES, METRICS)
-        frame = None
-        if args.origin or args.normal or args.x_axis:
-            length = units_of(args.units or "SI")[0]
-            frame = ContactFrame(origin=[length * x for x in (args.origin or (0, 0, 0))],
-                                 normal=args.normal or (0, 0, 1),
-                                 x_axis=args.x_axis or (1, 0, 0), source=str(args.result))
+        length = units_of(args.units or "SI")[0]
+        frame = {k: v for k, v in (("origin", args.origin and [length * x for x in args.origin]),
+                                   ("normal", args.normal), ("x_axis", args.x_axis)) if v}
+        if len(frame) == 3:
+            frame = ContactFrame(**frame, source=str(args.result))
         fields = {k: v for k, v in (("pressure", args.pressure_field),
                                     ("normal_force", args.normal_force_field),
                                     ("reaction", args.reaction_field),

@@ -228,7 +228,9 @@ def write_reports(results: list[Comparison], out: Path, header: str = "",
     json_path.write_text(json.dumps([r.to_dict() for r in results], indent=1, default=float))
     md_path.write_text(report_document(
         results, header, "Finite elements against Hertz", [k for k, _ in COLUMNS], HEADERS,
-        MEANINGS, targets, report_markdown(results)))
+        MEANINGS, targets, report_markdown(results),
+        note="These are the targets of the default level (4); coarser levels are expected to "
+             "miss some."))
     return json_path, md_path
 
 

@@ -13,8 +13,10 @@ STEEL = {"E": 210e9, "nu": 0.3}
 ALUMINIUM = {"E": 70e9, "nu": 0.33}
 #: Semi-major axis over the smallest radius for the default loads (Hertz needs a << R).
 A_OVER_R = 0.03
-#: The largest curvature ratio the block meshes support (measured at level 0, 2 cores:
-#: alpha 1000 meshes and solves in 33 s, 278 MB; see MAX_ALPHA's commit).
+#: The largest curvature ratio the block meshes support.  Measured at level 0 on 2 shared
+#: cores: alpha 1000 meshes, solves and compares in 33 s and 278 MB (55k dofs), 1e4 in 131 s
+#: and 677 MB (189k dofs), 1e5 did not finish in 400 s (issue 18: 77 s and 1.9 GB, then a
+#: math domain error; 1e9 meshed for over 5 minutes).  The README validates up to 100.
 MAX_ALPHA = 1000.0
 
 

@@ -14,7 +14,8 @@ Conventions (every reader follows them):
   holds only x >= 0 and y >= 0 of the contact frame, with its largest pressure
   next to the origin, is a quarter model; only x >= 0 (or y >= 0), a half model.
 * ``frame``: a :class:`~fem_validation.result.ContactFrame`, or None to find one
-  (:func:`find_frame`).
+  (:func:`find_frame`), or a dict with some of ``origin``, ``normal``, ``x_axis``
+  (SI) given and the rest found.
 
 A CalculiX ``.frd`` is read by ``fem_validation.readers.frd`` where that module
 offers ``read_result(path, units=..., symmetry=..., force=..., frame=...,
@@ -71,9 +72,9 @@ def find_frame(points: np.ndarray, weight: np.ndarray, symmetric: bool,
         centred = pressed - pressed.mean(axis=0)
         _, _, vt = np.linalg.svd(centred, full_matrices=False)
         n = vt[-1]
-        spread = np.abs(centred @ vt.T).max(axis=0)
-        if spread[-1] < 1e-12 * max(spread[0], 1e-300):
-            n = np.round(n)  # a plane of coordinates: keep the axis exact
+        axis = np.round(n)
+        if np.abs(axis).sum() == 1 and np.abs(n - axis).max() < 1e-9:
+            n = axis  # a plane of coordinates: keep the axis exact
         k = 2 if abs(n[2]) > 1e-6 else 1 if abs(n[1]) > 1e-6 else 0
         normal = n if n[k] > 0 else -n
     normal = np.asarray(normal, dtype=float)
@@ -124,6 +125,13 @@ def force_from_reaction(rf: np.ndarray, normal: np.ndarray, where: str = "") -> 
     return 0.5 * (push + hold)
 
 
+def resolve_frame(frame, points, weight, symmetric: bool, source: str = "") -> ContactFrame:
+    """``frame`` as a ContactFrame: itself, found (None) or completed (a dict of parts)."""
+    if isinstance(frame, ContactFrame):
+        return frame
+    return find_frame(points, weight, symmetric, source=source, **(frame or {}))
+
+
 def finish(points, pressure, normal_force, force, symmetry, frame, triangles=None,
            stress=(), source="", details=None, weight=None) -> ContactResult:
     """Detect what is not given and build the ContactResult (SI inputs; ``force`` of the
@@ -143,14 +151,19 @@ def finish(points, pressure, normal_force, force, symmetry, frame, triangles=Non
     if not (weight > 0).any():
         raise ResultError(f"{source}: the contact is empty: no node carries a positive "
                           f"contact pressure or force")
-    if symmetry is None:
-        probe = frame if frame is not None else find_frame(pts, weight, True, source=source)
-        symmetry = detect_symmetry(probe.to_frame(pts)[:, :2], weight)
-    if symmetry not in MULTIPLICITY:
+    if symmetry is not None and symmetry not in MULTIPLICITY:
         raise ResultError(f"{source}: symmetry must be one of {', '.join(MULTIPLICITY)}, "
                           f"got {symmetry!r}")
-    if frame is None:
-        frame = find_frame(pts, weight, symmetry != "whole", source=source)
+    probe = resolve_frame(frame, pts, weight, True, source)
+    detected = detect_symmetry(probe.to_frame(pts)[:, :2], weight)
+    if symmetry is None:
+        symmetry = detected
+    elif MULTIPLICITY[detected] > MULTIPLICITY[symmetry]:
+        # Pressed on one side of a plane through its peak: no whole contact looks so.
+        raise ResultError(f"{source}: symmetry {symmetry!r} was given, but the file holds a "
+                          f"{detected} model (every node on one side of the symmetry "
+                          f"plane(s), the largest pressure on it): give --symmetry {detected}")
+    frame = resolve_frame(frame, pts, weight, symmetry != "whole", source)
     if force is None:
         raise ResultError(f"{source}: no total force: the file has no reaction field (RF) "
                           f"and no force line; give --force N (the model's own reaction)")
@@ -161,7 +174,7 @@ def finish(points, pressure, normal_force, force, symmetry, frame, triangles=Non
 
 
 def read_result(path, *, units: str | None = None, symmetry: str | None = None,
-                force: float | None = None, frame: ContactFrame | None = None,
+                force: float | None = None, frame: ContactFrame | dict | None = None,
                 fields: dict | None = None) -> ContactResult:
     """A ContactResult from a file, by its extension: ``.csv`` (:mod:`.table`), ``.frd``
     (CalculiX, :mod:`.frd`), anything else through meshio (:mod:`.meshes`).
@@ -175,8 +188,9 @@ def read_result(path, *, units: str | None = None, symmetry: str | None = None,
         Detected where not given.
     force : float, optional
         The total normal force of the model in the file [its force unit].
-    frame : ContactFrame, optional
-        In SI; found where not given.
+    frame : ContactFrame or dict, optional
+        In SI; found where not given; a dict of some of origin, normal, x_axis: the
+        rest found.
     fields : dict, optional
         Field names: ``{"pressure": NAME[:COMPONENT], "normal_force": ...,
         "reaction": ..., "stress": ...}``; recognised where not given.

@@ -21,6 +21,8 @@ split into four linear triangles through their mid-side nodes.
 
 from __future__ import annotations
 
+import contextlib
+import io
 from pathlib import Path
 
 import numpy as np
@@ -31,9 +33,10 @@ from .common import (
     PRESSURE_NAMES,
     REACTION_NAMES,
     STRESS_NAMES,
-    find_frame,
+    detect_symmetry,
     finish,
     force_from_reaction,
+    resolve_frame,
     units_of,
 )
 
@@ -168,10 +171,12 @@ def read_mesh(path, *, units: str | None = None, symmetry: str | None = None,
     src = str(path)
     fields = dict(fields or {})
     units = units or "SI"
-    try:
-        mesh = meshio.read(path)
-    except Exception as exc:  # meshio raises many types for files it cannot read
-        raise ResultError(f"{src}: meshio cannot read it: {exc}"[:400]) from None
+    try:  # meshio prints its complaints and may call sys.exit: keep it quiet, catch both
+        with contextlib.redirect_stdout(io.StringIO()), contextlib.redirect_stderr(io.StringIO()):
+            mesh = meshio.read(path)
+    except (Exception, SystemExit) as exc:  # meshio raises many types for bad files
+        reason = str(exc) if not isinstance(exc, SystemExit) else "not a valid file"
+        raise ResultError(f"{src}: meshio cannot read it: {reason}"[:400]) from None
     length, force_unit, pressure_unit = units_of(units, f"{src}: ")
     points = np.asarray(mesh.points, dtype=float)
     if points.shape[1] == 2:
@@ -210,14 +215,12 @@ def read_mesh(path, *, units: str | None = None, symmetry: str | None = None,
     p_s = None if pressure is None else pressure[nodes] * pressure_unit
     f_s = None if normal_force is None else normal_force[nodes] * force_unit
     w_s = weight[nodes]
-    if frame is None:
+    if not isinstance(frame, ContactFrame):
         sym = symmetry
         if sym is None:
-            from .common import detect_symmetry
-
-            probe = find_frame(surface, w_s, True, source=src)
+            probe = resolve_frame(frame, surface, w_s, True, src)
             sym = detect_symmetry(probe.to_frame(surface)[:, :2], w_s)
-        frame = find_frame(surface, w_s, sym != "whole", source=src)
+        frame = resolve_frame(frame, surface, w_s, sym != "whole", src)
         symmetry = sym
     if force is None:
         rkey, rf = _field(mesh.point_data, REACTION_NAMES, "reaction", fields.get("reaction"),
