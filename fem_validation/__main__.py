@@ -8,6 +8,7 @@
     python -m fem_validation --curved --level 2 --a-over-r 0.01 0.2 --out DIR
     python -m fem_validation --curved --levels 3 4 --out DIR  # two levels, one table
     python -m fem_validation grade RESULT --scene FILE.toml --out DIR   # another code's result
+    python -m fem_validation deck --scene FILE.toml --format calculix --out DIR  # a deck for one
 
 Writes DIR/report.json, DIR/report.md, <scene>_body1.vtu, <scene>_body2.vtu and
 <scene>_pressure.png per scene (a study writes study.json, study.md and
@@ -147,8 +148,26 @@ def _conflicts(args) -> None:
         raise UsageError("--levels applies to --study and --curved only (use --level)")
 
 
+def _deck(argv: list[str]) -> int:
+    """``python -m fem_validation deck ...``: a benchmark deck for another code."""
+    from . import decks
+
+    p = OneLineParser(prog="python -m fem_validation deck",
+                      description="Write a Hertz benchmark as input for another "
+                                  "finite-element code (fem_validation.decks).")
+    decks.add_arguments(p)
+    try:
+        args = p.parse_args(argv[1:])
+        return decks.run(args, command=" ".join(["python -m fem_validation", *argv]))
+    except (FEMValidationError, ValueError, OSError) as exc:
+        print(f"fem_validation deck: error: {exc}".splitlines()[0], file=sys.stderr)
+        return 2
+
+
 def main(argv=None) -> int:
     argv = sys.argv[1:] if argv is None else list(argv)
+    if argv[:1] == ["deck"]:
+        return _deck(argv)
     if argv[:1] == ["grade"]:
         from .grade_cli import main as grade_main
 

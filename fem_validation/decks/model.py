@@ -1,0 +1,423 @@
+"""A scene -> a two-body quadratic-tetrahedron model that any FE code can take.
+
+Two geometries:
+
+* **true curved bodies** (gmsh OpenCASCADE, :mod:`fem_validation.curved_mesh`) when
+  the scene is a ball on a flat block or in a groove along x (one material):
+  the quarter of a hemisphere on a block, the ball's equator moved down
+  rigidly, the block's bottom clamped;
+* **paraboloid-faced blocks** for every other scene: the two blocks of
+  :mod:`fem_validation.mesh` (structured grid around the contact), whose flat
+  faces at z = 0 are then mapped onto the bodies' paraboloids,
+  z -> z + h1(x, y) (1 - z/H) in body 1 and z -> z - h2(x, y) (1 + z/H) in
+  body 2 (h_i = x_i**2 / (2 R_ix) + y_i**2 / (2 R_iy) in body i's frame), so
+  that the initial gap is Hertz's h1 + h2 and the far faces stay flat.
+  Body 1's top is moved down rigidly, body 2's bottom clamped.
+
+The linear tetrahedra are made quadratic here (C3D10 node order: vertices,
+then the mid-side nodes of edges 1-2, 2-3, 3-1, 1-4, 2-4, 3-4); mid-side nodes
+on the sphere or the groove are projected onto it, those of the blocks are
+mapped with the vertices.  Coordinates are in metres.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+
+import numpy as np
+
+import hertz
+
+from ..errors import FEMValidationError
+from ..scenes import Scene
+
+#: C3D10 / Abaqus mid-side nodes: the vertex pairs of nodes 5..10 (0-based).
+TET10_EDGES = ((0, 1), (1, 2), (2, 0), (0, 3), (1, 3), (2, 3))
+#: C3D4 / C3D10 faces S1..S4 (0-based vertices); on a positive tetrahedron the right-hand
+#: normal of each vertex triple points into the element.
+TET_FACES = ((0, 1, 2), (0, 3, 1), (1, 3, 2), (2, 3, 0))
+#: Penalty stiffness of the contact over E* / h0 (h0 the element size at the contact).
+PENALTY_FACTOR = 10.0
+#: _EDGE_OF[i, j]: the C3D10 mid-side node (minus 4) between vertices i and j.
+_EDGE_OF = np.full((4, 4), -1)
+for _k, (_i, _j) in enumerate(TET10_EDGES):
+    _EDGE_OF[_i, _j] = _EDGE_OF[_j, _i] = _k
+#: Slave faces: centroids within this many semi-axes of the contact centre; master: MASTER.
+SLAVE_REGION = 2.5
+MASTER_REGION = 3.5
+#: The blocks' half-width and depth: at most EXTENT_OVER_A semi-major axes, and small
+#: enough that the paraboloid rises at most MAX_RISE times the depth at the edge.
+EXTENT_OVER_A = 40.0
+MIN_EXTENT_OVER_A = 8.0
+MAX_RISE = 0.3
+
+
+@dataclass
+class DeckModel:
+    """A two-body contact model in the form decks are written from (SI units).
+
+    Attributes
+    ----------
+    nodes : ndarray, shape (n, 3)
+        Node coordinates [m]; node i has the number i + 1 in a deck.
+    elements : ndarray of int, shape (m, 10)
+        Quadratic tetrahedra in C3D10 order (0-based node indices); element j
+        has the number j + 1.
+    body : ndarray of int, shape (m,)
+        1 or 2: the body of each element.
+    node_sets : dict of str -> int array
+        Named node sets (0-based): MOVED, FIXED, SYMX, SYMY (quarter only),
+        BODY1, BODY2, SLAVE, MASTER.
+    surfaces : dict of str -> (elements, faces)
+        Element-face surfaces: 0-based element indices and face numbers 1..4.
+    slave, master : str
+        Names of the slave and master surfaces (keys of ``surfaces``).
+    scene : Scene
+        The scene (bodies, target load, angle).
+    approach : float
+        Prescribed downward displacement of MOVED [m].
+    penalty : float
+        Linear pressure-overclosure slope [Pa/m].
+    h0 : float
+        Element size at the contact [m] (edge of the linear mesh).
+    quarter : bool
+        True for the quarter model (x >= 0, y >= 0).
+    geometry : str
+        "sphere-plane", "ball-groove" or "paraboloid-blocks".
+    level : int
+    info : dict
+        Further figures for problem.json (block sizes, settlement correction).
+    """
+
+    nodes: np.ndarray
+    elements: np.ndarray
+    body: np.ndarray
+    node_sets: dict
+    surfaces: dict
+    slave: str
+    master: str
+    scene: Scene
+    approach: float
+    penalty: float
+    h0: float
+    quarter: bool
+    geometry: str
+    level: int
+    info: dict = field(default_factory=dict)
+
+    @property
+    def contact(self) -> hertz.Contact:
+        """Hertz's solution at the scene's target load."""
+        return self.scene.hertz()
+
+
+def quadratic(p: np.ndarray, t: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """Mid-side nodes for linear tetrahedra.
+
+    Parameters
+    ----------
+    p : ndarray, shape (n, 3)
+        Vertices.
+    t : ndarray of int, shape (m, 4)
+        Positively oriented tetrahedra.
+
+    Returns
+    -------
+    nodes : ndarray, shape (n + k, 3)
+        Vertices, then the k edge midpoints (straight edges).
+    tet10 : ndarray of int, shape (m, 10)
+        C3D10 connectivity.
+    edges : ndarray of int, shape (k, 2)
+        The vertex pair of each mid-side node (node n + i is the middle of edges[i]).
+    """
+    pairs = np.stack([t[:, list(e)] for e in TET10_EDGES], axis=1)  # (m, 6, 2)
+    flat = np.sort(pairs.reshape(-1, 2), axis=1)
+    edges, inverse = np.unique(flat, axis=0, return_inverse=True)
+    mid = 0.5 * (p[edges[:, 0]] + p[edges[:, 1]])
+    tet10 = np.hstack([t, len(p) + inverse.reshape(-1, 6)])
+    return np.vstack([p, mid]), tet10, edges
+
+
+def boundary_faces(t: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """Boundary faces of a tetrahedral mesh as (vertices (k, 3), element, face 1..4)."""
+    faces = np.concatenate([t[:, list(f)] for f in TET_FACES])  # face-major
+    m = len(t)
+    elem = np.tile(np.arange(m), 4)
+    number = np.repeat(np.arange(1, 5), m)
+    key = np.sort(faces, axis=1)
+    _, inverse, count = np.unique(key, axis=0, return_inverse=True, return_counts=True)
+    outer = count[inverse.ravel()] == 1
+    return faces[outer], elem[outer], number[outer]
+
+
+def face_nodes(conn: np.ndarray, face: np.ndarray) -> np.ndarray:
+    """The six nodes of faces of quadratic tetrahedra: (k, 6), vertices then mid-sides.
+
+    ``conn`` (k, 10) in C3D10 order, ``face`` the face numbers 1..4.
+    """
+    local = np.array(TET_FACES)[face - 1]  # (k, 3)
+    rows = np.arange(len(conn))[:, None]
+    verts = conn[rows, local]
+    mids = conn[rows, 4 + _EDGE_OF[local, np.roll(local, -1, axis=1)]]
+    return np.hstack([verts, mids])
+
+
+def _extend_set(vertex_set: np.ndarray, edges: np.ndarray, n_vertices: int) -> np.ndarray:
+    """A vertex set plus the mid-side nodes of the edges with both ends in it."""
+    inside = np.zeros(n_vertices, dtype=bool)
+    inside[vertex_set] = True
+    mids = np.nonzero(inside[edges[:, 0]] & inside[edges[:, 1]])[0] + n_vertices
+    return np.concatenate([np.asarray(vertex_set, dtype=np.int64), mids])
+
+
+def _select_faces(faces, elem, number, p, keep_vertices, centre_ok):
+    """Boundary faces whose three vertices are in ``keep_vertices`` and whose centroid passes."""
+    mask = np.all(keep_vertices[faces], axis=1)
+    c = p[faces[mask]].mean(axis=1)
+    ok = centre_ok(c)
+    idx = np.nonzero(mask)[0][ok]
+    return elem[idx], number[idx]
+
+
+def _ellipse_radius(scene: Scene, xy: np.ndarray) -> np.ndarray:
+    """sqrt((X/a)^2 + (Y/b)^2) in the Hertz ellipse's frame at the target load."""
+    c = scene.hertz()
+    cs, sn = math.cos(c.major_axis_angle), math.sin(c.major_axis_angle)
+    along = xy[:, 0] * cs + xy[:, 1] * sn
+    across = -xy[:, 0] * sn + xy[:, 1] * cs
+    return np.hypot(along / c.a, across / c.b)
+
+
+def paraboloid_height(body: hertz.Body, x: np.ndarray, y: np.ndarray) -> np.ndarray:
+    """x**2 / (2 Rx) + y**2 / (2 Ry) in the body's frame [m] (0 for an infinite radius)."""
+    h = np.zeros_like(x)
+    for r, u in ((body.Rx, x), (body.Ry, y)):
+        if math.isfinite(r):
+            h = h + u * u / (2.0 * r)
+    return h
+
+
+# --------------------------------------------------------------------------- curved
+def curved_scene_for(scene: Scene):
+    """The :class:`CurvedScene` of a ball on a plane or in a groove along x, or None.
+
+    True geometry needs: body 1 a sphere (Rx = Ry > 0), body 2 flat or a groove
+    (Rx infinite, Ry = -R_g with R_g > R), one material, and a semi-axis at the
+    target load of at most half the ball's radius.
+    """
+    from ..curved_mesh import CurvedScene, ball_groove, sphere_plane
+
+    b1, b2 = scene.body1, scene.body2
+    if not (math.isfinite(b1.Rx) and b1.Rx == b1.Ry and b1.Rx > 0):
+        return None
+    if (b1.E, b1.nu) != (b2.E, b2.nu) or scene.angle != 0.0:
+        return None
+    radius = b1.Rx
+    a_over_r = scene.hertz().a / radius
+    if not 0 < a_over_r <= 0.5:
+        return None
+    material = {"E": b1.E, "nu": b1.nu}
+    if math.isinf(b2.Rx) and math.isinf(b2.Ry):
+        c = sphere_plane(a_over_r, radius)
+    elif math.isinf(b2.Rx) and math.isfinite(b2.Ry) and -b2.Ry > radius:
+        c = ball_groove(a_over_r, radius, -b2.Ry / radius)
+    else:
+        return None
+    return CurvedScene(c.name, c.radius, c.groove_radius, c.a_over_r, material)
+
+
+def build_curved_model(scene: Scene, level: int, slave_body: int = 1,
+                       penalty_factor: float = PENALTY_FACTOR) -> DeckModel:
+    """Quarter model of a ball on a block (or in a groove) with quadratic tetrahedra."""
+    from ..curved import imposed_approach
+    from ..curved_mesh import build_curved
+
+    cscene = curved_scene_for(scene)
+    if cscene is None:
+        raise ValueError(f"scene {scene.name!r} is not a ball on a plane or in a groove")
+    mesh = build_curved(cscene, level)
+    r = cscene.radius
+    parts, sets = [], {}
+    offset_n = 0
+    # node sets on the linear meshes (vertex indices per body)
+    vsets = {"MOVED": (mesh.fixed[0], None), "FIXED": (None, mesh.fixed[1]),
+             "SYMX": mesh.sym_x, "SYMY": mesh.sym_y}
+    region = {}
+    for i, m in enumerate(mesh.bodies):
+        p, t = m.p.T, m.t.T
+        nodes, tet10, edges = quadratic(p, t)
+        faces, elem, number = boundary_faces(t)
+        # project the curved surface's mid-side nodes onto the sphere or the cylinder
+        if i == 0:
+            centre = np.array([0.0, 0.0, r])
+            on = np.abs(np.linalg.norm(p - centre, axis=1) - r) < 1e-9 * r
+            mids = np.nonzero(on[edges[:, 0]] & on[edges[:, 1]])[0] + len(p)
+            d = nodes[mids] - centre
+            nodes[mids] = centre + r * d / np.linalg.norm(d, axis=1)[:, None]
+        elif cscene.groove_radius is not None:
+            rg = cscene.groove_radius
+            yz = p[:, 1:] - np.array([0.0, rg])
+            on = np.abs(np.linalg.norm(yz, axis=1) - rg) < 1e-9 * rg
+            mids = np.nonzero(on[edges[:, 0]] & on[edges[:, 1]])[0] + len(p)
+            d = nodes[mids, 1:] - np.array([0.0, rg])
+            nodes[mids, 1:] = np.array([0.0, rg]) + rg * d / np.linalg.norm(d, axis=1)[:, None]
+        for name, pair in vsets.items():
+            if pair[i] is not None:
+                sets.setdefault(name, []).append(_extend_set(pair[i], edges, len(p)) + offset_n)
+        sets[f"BODY{i + 1}"] = [np.arange(len(nodes)) + offset_n]
+        # contact faces: the ball's slave triangles, the block's master triangles
+        if i == 0:
+            tri = mesh.slave[mesh.slave_triangles]
+        else:
+            tri = mesh.master
+        key = {tuple(sorted(f)): k for k, f in enumerate(faces)}
+        idx = np.array([key[tuple(sorted(f))] for f in tri])
+        region[i] = (elem[idx], number[idx])
+        parts.append((nodes, tet10, edges, len(p)))
+        offset_n += len(nodes)
+    return _assemble(scene, parts, sets, region, slave_body, level, quarter=True,
+                     geometry=cscene.name, h0=mesh.h0,
+                     approach=imposed_approach(cscene, mesh), penalty_factor=penalty_factor,
+                     info={"ball_radius": r, "groove_radius": cscene.groove_radius,
+                           "block_half_width": mesh.parameters["L"] * r,
+                           "block_depth": mesh.block_depth,
+                           "moved": "the ball's equator (z = R)",
+                           "far_face_depths": [r, mesh.block_depth]})
+
+
+# --------------------------------------------------------------------------- blocks
+def block_extent(scene: Scene) -> float:
+    """Half-width = depth of the paraboloid-faced blocks, in units of b.
+
+    EXTENT_OVER_A semi-major axes, less where a paraboloid would rise more than
+    MAX_RISE of the depth at the block's edge (the mapped elements stay sound).
+    """
+    c = scene.hertz()
+    curv = max(abs(1 / r) for body in (scene.body1, scene.body2)
+               for r in (body.Rx, body.Ry) if math.isfinite(r))
+    # rise at the corner (distance sqrt 2 L) over depth L: curv * 2 L**2 / 2 / L = curv L
+    extent = min(EXTENT_OVER_A * c.a, MAX_RISE / curv)
+    if extent < MIN_EXTENT_OVER_A * c.a:
+        raise ValueError(f"scene {scene.name!r}: the contact is too large for the radii "
+                         f"(a = {c.a:.3g} m against the smallest radius {1 / curv:.3g} m) "
+                         f"for paraboloid-faced blocks of {MIN_EXTENT_OVER_A:g} a; lower the load")
+    return extent / c.b
+
+
+def build_block_model(scene: Scene, level: int, quarter: bool | None = None,
+                      slave_body: int = 1, penalty_factor: float = PENALTY_FACTOR) -> DeckModel:
+    """Two paraboloid-faced blocks with quadratic tetrahedra."""
+    from ..mesh import build
+    from ..solve import imposed_approach
+
+    if quarter is None:
+        quarter = scene.symmetric
+    if quarter and not scene.symmetric:
+        raise ValueError(f"scene {scene.name!r} has no quarter symmetry (principal planes at "
+                         f"{math.degrees(scene.angle):g} deg): use --model whole")
+    extent = block_extent(scene)
+    mesh = build(scene, level, parameters={"L": extent, "H": extent,
+                                           "hmax": 0.25 * extent * _level_scale(level),
+                                           "quarter": 1.0 if quarter else 0.0})
+    depth = mesh.depth
+    cos, sin = math.cos(scene.angle), math.sin(scene.angle)
+    parts, sets, region = [], {}, {}
+    offset_n = 0
+    vsets = {"MOVED": (mesh.top, None), "FIXED": (None, mesh.bottom)}
+    if quarter:
+        vsets["SYMX"], vsets["SYMY"] = mesh.sym_x, mesh.sym_y
+    for i, m in enumerate(mesh.bodies):
+        p, t = m.p.T, m.t.T
+        nodes, tet10, edges = quadratic(p, t)
+        x, y, z = nodes.T
+        if i == 0:
+            h = paraboloid_height(scene.body1, x, y)
+            nodes[:, 2] = z + h * (1.0 - z / depth)
+        else:
+            h = paraboloid_height(scene.body2, x * cos + y * sin, -x * sin + y * cos)
+            nodes[:, 2] = z - h * (1.0 + z / depth)
+        for name, pair in vsets.items():
+            if pair[i] is not None:
+                sets.setdefault(name, []).append(_extend_set(pair[i], edges, len(p)) + offset_n)
+        sets[f"BODY{i + 1}"] = [np.arange(len(nodes)) + offset_n]
+        faces, elem, number = boundary_faces(t)
+        on_contact = np.zeros(len(p), dtype=bool)
+        on_contact[mesh.pairs[:, i]] = True
+        reach = SLAVE_REGION if i + 1 == slave_body else MASTER_REGION
+        region[i] = _select_faces(faces, elem, number, p, on_contact,
+                                  lambda c, reach=reach: _ellipse_radius(scene, c) <= reach)
+        parts.append((nodes, tet10, edges, len(p)))
+        offset_n += len(nodes)
+    return _assemble(scene, parts, sets, region, slave_body, level, quarter=quarter,
+                     geometry="paraboloid-blocks", h0=mesh.h0,
+                     approach=imposed_approach(scene, mesh), penalty_factor=penalty_factor,
+                     info={"block_half_width": mesh.extent, "block_depth": depth,
+                           "moved": "body 1's top face (z = H)",
+                           "far_face_depths": [depth, depth]})
+
+
+def _level_scale(level: int) -> float:
+    from ..mesh import LEVEL_SCALE
+
+    if level not in LEVEL_SCALE:
+        raise ValueError(f"level must be one of {sorted(LEVEL_SCALE)}, got {level!r}")
+    return LEVEL_SCALE[level]
+
+
+def _assemble(scene, parts, sets, region, slave_body, level, *, quarter, geometry, h0,
+              approach, penalty_factor, info) -> DeckModel:
+    if slave_body not in (1, 2):
+        raise ValueError(f"slave_body must be 1 or 2, got {slave_body!r}")
+    if not penalty_factor > 0:
+        raise ValueError(f"penalty_factor must be > 0, got {penalty_factor!r}")
+    nodes = np.vstack([q[0] for q in parts])
+    offsets = np.cumsum([0] + [len(q[0]) for q in parts])
+    elements = np.vstack([q[1] + off for q, off in zip(parts, offsets, strict=False)])
+    body = np.concatenate([np.full(len(q[1]), i + 1) for i, q in enumerate(parts)])
+    eoff = np.cumsum([0] + [len(q[1]) for q in parts])
+    surfaces = {}
+    for i in (0, 1):
+        elem, face = region[i]
+        if not len(elem):
+            raise FEMValidationError(f"{scene.name}: no contact faces on body {i + 1}")
+        surfaces[f"CONTACT{i + 1}"] = (elem + eoff[i], face)
+    node_sets = {k: np.unique(np.concatenate(v)) for k, v in sets.items()}
+    for i in (0, 1):
+        el, fc = surfaces[f"CONTACT{i + 1}"]
+        name = "SLAVE" if i + 1 == slave_body else "MASTER"
+        node_sets[name] = np.unique(face_nodes(elements[el], fc))
+    c = scene.hertz()
+    penalty = penalty_factor * c.e_star / h0
+    info = {**info, "penalty_factor": penalty_factor}
+    return DeckModel(nodes, elements, body, node_sets, surfaces,
+                     f"CONTACT{slave_body}", f"CONTACT{3 - slave_body}", scene, approach,
+                     penalty, h0, quarter, geometry, level, info)
+
+
+def build_model(scene: Scene, level: int, model: str = "auto", slave_body: int = 1,
+                penalty_factor: float = PENALTY_FACTOR) -> DeckModel:
+    """The deck model of a scene: true curved bodies where possible, else paraboloid blocks.
+
+    Parameters
+    ----------
+    scene : Scene
+    level : int
+        Mesh level (0 coarse): the curved levels 0-4 of
+        :mod:`fem_validation.curved_mesh`, or the block levels 0-5 of
+        :mod:`fem_validation.mesh`.
+    model : {"auto", "quarter", "whole"}
+        Quarter or whole model; "auto" takes the quarter model where the scene
+        allows it.  True curved bodies are quarter models only: "whole" gives
+        paraboloid-faced blocks.
+    slave_body : {1, 2}
+        The body whose contact face is the slave surface.
+    penalty_factor : float
+        Penalty slope over E*/h0.
+    """
+    if model not in ("auto", "quarter", "whole"):
+        raise ValueError(f"model must be 'auto', 'quarter' or 'whole', got {model!r}")
+    if model != "whole" and curved_scene_for(scene) is not None:
+        return build_curved_model(scene, level, slave_body, penalty_factor)
+    quarter = None if model == "auto" else model == "quarter"
+    return build_block_model(scene, level, quarter, slave_body, penalty_factor)
