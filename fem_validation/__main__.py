@@ -14,7 +14,8 @@ Writes DIR/report.json, DIR/report.md, <scene>_body1.vtu, <scene>_body2.vtu and
 <scene>_pressure.png per scene (a study writes study.json, study.md and
 study.png; --curved writes curved.json, curved.md and curved.png, at the
 levels 0-4 of fem_validation.curved_mesh, default 3); with --readme also the
-README's tables and docs/fem/*.png.  Errors (usage, conflicting flags, an
+tables of the documentation (docs/explanation/fem-model.md, curved-bodies.md)
+and docs/fem/*.png.  Errors (usage, conflicting flags, an
 --out that cannot be written, an alpha the meshes do not support, --readme
 outside a checkout) print one line on stderr and exit with status 2, before
 anything runs.  ``grade``: see :mod:`fem_validation.grade_cli`.
@@ -64,26 +65,30 @@ def _scene(name: str):
     raise ValueError(f"unknown scene {name!r}: use alpha-<A>, {', '.join(NAMED)}")
 
 
-def readme_section(marker: str) -> str:
-    """The README.md text, if it has the <!-- marker --> section; ValueError otherwise
-    (checked before a run, so that --readme outside a checkout fails at once)."""
-    readme = Path("README.md")
-    content = readme.read_text() if readme.exists() else ""
+def readme_section(marker: str) -> tuple[Path, str]:
+    """The page holding the <!-- marker --> section (README.md or a docs/**/*.md page of
+    the checkout in the working directory) and its text; ValueError if none or several
+    do (checked before a run, so that --readme outside a checkout fails at once)."""
     begin, end = f"<!-- {marker} -->", f"<!-- /{marker} -->"
-    if begin not in content or end not in content:
-        raise ValueError(f"--readme: README.md (in {Path.cwd()}) has no {begin} ... {end} "
-                         f"section: run from the repository's root")
-    return content
+    pages = [Path("README.md"), *sorted(Path("docs").glob("**/*.md"))]
+    found = [(page, text) for page in pages if page.is_file()
+             for text in [page.read_text(encoding="utf-8")] if begin in text and end in text]
+    if len(found) != 1:
+        where = "no page" if not found else ", ".join(str(page) for page, _ in found)
+        raise ValueError(f"--readme: {where} of README.md and docs/**/*.md (in {Path.cwd()}) "
+                         f"holds the {begin} ... {end} section: run from the repository's "
+                         "root")
+    return found[0]
 
 
 def publish(marker: str, text: str, images) -> None:
-    """Replace the README section between <!-- marker --> and <!-- /marker --> and copy
-    the images to docs/fem/."""
-    readme = Path("README.md")
-    content = readme_section(marker)
+    """Replace the section between <!-- marker --> and <!-- /marker --> of the page that
+    holds it and copy the images to docs/fem/."""
+    page, content = readme_section(marker)
     begin, end = f"<!-- {marker} -->", f"<!-- /{marker} -->"
     head, rest = content.split(begin, 1)
-    readme.write_text(f"{head}{begin}\n{text.strip()}\n{end}{rest.split(end, 1)[1]}")
+    page.write_text(f"{head}{begin}\n{text.strip()}\n{end}{rest.split(end, 1)[1]}",
+                    encoding="utf-8")
     docs = Path("docs") / "fem"
     docs.mkdir(parents=True, exist_ok=True)
     for src, name in images:
@@ -121,8 +126,8 @@ def _parser() -> argparse.ArgumentParser:
                         f"{NESTED_REBUILD_FRACTION} for a nested start's fine solve; inf: once)")
     p.add_argument("--out", type=Path, default=Path("fem_out"), help="output directory")
     p.add_argument("--readme", action="store_true",
-                   help="also put the table (or the study) into README.md and the plots "
-                        "into docs/fem/ (run from the repository root)")
+                   help="also put the table (or the study) into its documentation page and "
+                        "the plots into docs/fem/ (run from the repository root)")
     p.add_argument("--quiet", action="store_true", help="log warnings only")
     return p
 
