@@ -72,6 +72,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from . import _interop
 from ._validate import as_float_array, broadcast_shape, error_at, first_failure, index_text
 
 __all__ = ["FrettingLoop", "Tangential", "TangentialSpring", "dundurs_beta",
@@ -355,6 +356,9 @@ class Tangential:
         s = stick_a / a, the second term in the stick ellipse only; 0 outside
         the contact.  The traction vector is this times the force's unit vector.
         """
+        if _interop.any_wrapped(self._a, x, y):  # pandas, xarray, pint
+            return _interop.call_result_method(self, "traction", (("x", x, "m"), ("y", y, "m")),
+                                               "Pa", _interop.TANGENTIAL_UNITS)
         x = as_float_array(x, "x")
         y = as_float_array(y, "y")
         with np.errstate(divide="ignore", invalid="ignore"):
@@ -430,11 +434,17 @@ class FrettingLoop:
     def unloading(self, force):
         """Displacement [m] on the branch from Q* down to -Q*:
         delta* - 2 f((Q* - Q)/2), for -Q* <= force <= Q* [N]."""
+        if _interop.any_wrapped(self._reach, force):  # pandas, xarray, pint
+            return _interop.call_result_method(self, "unloading", (("force", force, "N"),), "m",
+                                               _interop.FRETTING_UNITS)
         force = as_float_array(force, "force")
         return _out(self.displacement_amplitude - 2.0 * self._f((self.amplitude - force) / 2.0))
 
     def reloading(self, force):
         """Displacement [m] on the branch from -Q* up to Q*: -delta* + 2 f((Q* + Q)/2)."""
+        if _interop.any_wrapped(self._reach, force):  # pandas, xarray, pint
+            return _interop.call_result_method(self, "reloading", (("force", force, "N"),), "m",
+                                               _interop.FRETTING_UNITS)
         force = as_float_array(force, "force")
         return _out(-self.displacement_amplitude + 2.0 * self._f((self.amplitude + force) / 2.0))
 
