@@ -457,3 +457,27 @@ def test_per_contact_moduli():
         one = hertz.contact(hertz.Body(5e-3, 0.02, E=float(moduli[i]), nu=float(nu1[i])),
                             hertz.Body.plane(**STEEL), load=10.0)
         assert k[i] == one.tangential_stiffness(0.4)
+
+
+def test_partial_slip_on_dask_is_lazy_the_same_bits_and_names_a_bad_element():
+    da = pytest.importorskip("dask.array")
+    loads = np.linspace(1.0, 100.0, 10)
+    body1, body2 = hertz.Body(5e-3, 0.02, **STEEL), hertz.Body.plane(**GLASS)
+    lazy = hertz.contact(body1, body2, load=da.from_array(loads, chunks=4))
+    eager = hertz.contact(body1, body2, load=loads)
+    force = 0.2 * loads * np.linspace(0.0, 1.0, 10)
+    t, ref = lazy.tangential(force, 0.2, 0.7), eager.tangential(force, 0.2, 0.7)
+    assert isinstance(t.stick_a, da.Array)
+    for name in ("stick_a", "stick_b", "slip_area", "displacement", "displacement_transverse",
+                 "stiffness", "no_slip_stiffness", "sliding"):
+        np.testing.assert_array_equal(np.asarray(getattr(t, name)), getattr(ref, name),
+                                      err_msg=name)
+    assert t.sliding.dtype == bool and bool(t.sliding[-1].compute())
+    bad = force.copy()
+    bad[6] = 0.21 * loads[6]
+    with pytest.raises(ValueError, match=r"^force must be at most mu \* load = .* N \(the "
+                                         r"limit of friction.*, got .* at index 6$"):
+        lazy.tangential(bad, 0.2).stick_a.compute()
+    # numpy input: the same check, before any result
+    with pytest.raises(ValueError, match=r"^force must be at most mu \* load .* at index 6$"):
+        eager.tangential(bad, 0.2)
