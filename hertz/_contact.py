@@ -486,6 +486,9 @@ class Contact:
         >>> print(f"{c.tangential_stiffness() / (8 * c.a / (2 * 1.7 / G)):.15f}")
         1.000000000000000
         """
+        if _interop.any_wrapped(self.a, direction):
+            return _interop.call_method(self, "tangential_stiffness",
+                                        (("direction", direction, "rad"),), "N/m")
         return _tangential.tangential_stiffness(self, direction)
 
     def tangential(self, force, mu, direction=0.0) -> _tangential.Tangential:
@@ -535,6 +538,10 @@ class Contact:
         >>> print(f"{t.stick_a / c.a:.3f}, {t.stiffness / t.no_slip_stiffness:.3f}")
         0.500, 0.500
         """
+        if _interop.any_wrapped(self.a, force, mu, direction):
+            return _interop.call_method(self, "tangential", (("force", force, "N"), ("mu", mu, ""),
+                                                             ("direction", direction, "rad")),
+                                        _interop.TANGENTIAL_UNITS)
         return _tangential.partial_slip(self, force, mu, direction)
 
     def fretting(self, amplitude, mu, direction=0.0) -> _tangential.FrettingLoop:
@@ -569,6 +576,11 @@ class Contact:
         >>> print(f"{loop.energy / (2 * 1e-9 / (9 * 30.0 * k)):.7f} {1 + 2 * q / 3:.7f}")
         1.0000222 1.0000222
         """
+        if _interop.any_wrapped(self.a, amplitude, mu, direction):
+            return _interop.call_method(self, "fretting", (("amplitude", amplitude, "N"),
+                                                           ("mu", mu, ""),
+                                                           ("direction", direction, "rad")),
+                                        _interop.FRETTING_UNITS)
         return _tangential.fretting(self, amplitude, mu, direction)
 
     def stress(self, x, y, z, body=1):

@@ -56,6 +56,13 @@ GEOMETRY_UNITS = {"ellipticity": ONE, "alpha": ONE, "m": ONE, "K": ONE, "E": ONE
 LINE_UNITS = {"half_width": M, "p0": PA, "e_star": PA, "rho_sum": PER_M,
               "load_per_length": N_PER_M}
 _BODY_UNITS = {"Rx": M, "Ry": M, "E": PA, "nu": ONE}
+#: the fields of the tangential results (None: a flag, wrapped in a container, never a unit)
+TANGENTIAL_UNITS = {"force": N, "mu": ONE, "direction": RAD, "stick_a": M, "stick_b": M,
+                    "slip_area": "m**2", "displacement": M, "displacement_transverse": M,
+                    "stiffness": N_PER_M, "no_slip_stiffness": N_PER_M, "sliding": None,
+                    "dundurs_beta": ONE, "_a": M, "_b": M, "_p0": PA}
+FRETTING_UNITS = {"amplitude": N, "displacement_amplitude": M, "energy": "J",
+                  "stiffness": N_PER_M, "mu": ONE, "load": N, "_reach": M}
 #: axes of a stress tensor in an xarray result
 _TENSOR_DIMS = ("row", "column")
 
@@ -125,7 +132,7 @@ class Recipe:
                 coords = dict(coords)
                 coords.update({d: list("xyz") for d in _TENSOR_DIMS})
             value = xr.DataArray(value, coords=coords, dims=dims, name=name)
-        if self.registry is not None:
+        if self.registry is not None and unit is not None:  # a flag stays a plain bool
             value = self.registry.Quantity(value, _unit(self.registry, unit))
         return value
 
@@ -432,15 +439,19 @@ def call_method(result, method: str, arguments, unit, *options):
     """``result.method(*arguments, *options)`` of a Contact or LineContact whose fields
     or arguments are pandas, xarray, pint or dask: unwrap, compute (block by block
     for dask), wrap.  ``arguments`` are (name, value, unit); ``unit`` is that of the
-    result (None: a Subsurface, whose fields are in Pa, or in m for the positions)."""
+    result (None: a Subsurface, whose fields are in Pa, or in m for the positions; a
+    dict: the units of the fields of the method's result, a Tangential or FrettingLoop)."""
     from ._contact import Contact, LineContact
 
     kind = type(result)
     own = _POINT_FIELDS if kind is Contact else LINE_UNITS
+    # Poisson's ratios, then the Young's moduli where the contact keeps them (tangential)
+    moduli = [("nu1", ONE), ("nu2", ONE), ("E1", PA), ("E2", PA)][:len(result._nu)]
     items = ([(k, getattr(result, k), u) for k, u in own.items()]
-             + [("nu1", result._nu[0], ONE), ("nu2", result._nu[1], ONE)] + list(arguments))
+             + [(k, v, u) for (k, u), v in zip(moduli, result._nu, strict=True)]
+             + list(arguments))
     plain, recipe = unwrap(items)
-    nown = len(own) + 2
+    nown = len(own) + len(moduli)
     _check_options(method, options)
     plain[nown:] = [v if is_dask(v) else as_float_array(v, name)
                     for v, (name, _, _) in zip(plain[nown:], arguments, strict=True)]
@@ -456,11 +467,18 @@ def call_method(result, method: str, arguments, unit, *options):
         return getattr(kind, method)(twin, *values[nown:], *options)
 
     tensor = method == "stress"
+    if unit is None:  # a Subsurface: stresses in Pa, their positions in m
+        rtype = _subsurface_type(kind)
+        unit = {f.name: M if f.name[:2] in ("x_", "y_", "z_") else PA
+                for f in _subsurface_fields(kind)}
+    elif isinstance(unit, dict):
+        rtype = _result_type(method)
     if any(is_dask(v) for v in plain):
-        if unit is None:
-            names = [f.name for f in _subsurface_fields(kind)]
+        if isinstance(unit, dict):
+            names = list(unit)
             fields = dask_map(lambda *v: _as_tuple(evaluate(*v), names), plain, nout=len(names))
-            out = _subsurface_type(kind)(*fields)
+            out = rtype(*(f if unit[k] is not None else f.astype(bool)
+                          for f, k in zip(fields, names, strict=True)))
         else:
             out = dask_map(evaluate, plain, trailing=(3, 3) if tensor else ())
     else:
@@ -468,11 +486,35 @@ def call_method(result, method: str, arguments, unit, *options):
             out = evaluate(*plain)
         except ValueError as exc:
             raise recipe.labelled(exc) from None
-    if unit is None:
-        return type(out)(*(recipe.wrap(getattr(out, f.name), M if f.name[:2] in
-                                       ("x_", "y_", "z_") else PA, f.name)
-                           for f in _subsurface_fields(kind)))
+    if isinstance(unit, dict):
+        return rtype(*(recipe.wrap(getattr(out, k), u, k) for k, u in unit.items()))
     return recipe.wrap(out, unit, method, tensor=tensor)
+
+
+def call_result_method(result, method: str, arguments, unit: str, units):
+    """``result.method(*arguments)`` of a Tangential or FrettingLoop whose fields (of
+    ``units``) or arguments are pandas, xarray or pint: unwrap, compute, wrap in ``unit``."""
+    import dataclasses
+
+    names = [k for k, u in units.items() if u is not None]
+    items = [(k, getattr(result, k), units[k]) for k in names] + list(arguments)
+    plain, recipe = unwrap(items)
+    twin = dict(zip(names, plain, strict=False))
+    twin = type(result)(**{f.name: twin.get(f.name, getattr(result, f.name))
+                           for f in dataclasses.fields(result)})
+    values = [as_float_array(v, name)
+              for v, (name, _, _) in zip(plain[len(names):], arguments, strict=True)]
+    try:
+        out = getattr(type(result), method)(twin, *values)
+    except ValueError as exc:
+        raise recipe.labelled(exc) from None
+    return recipe.wrap(out, unit, method)
+
+
+def _result_type(method):
+    from ._tangential import FrettingLoop, Tangential
+
+    return {"tangential": Tangential, "fretting": FrettingLoop}[method]
 
 
 def _check_options(method, options):

@@ -47,8 +47,11 @@ the mid-annulus ring, largest (mean) angle between slip and force: nu = 0.3, cir
 9.0 (6.0) degrees; b/a = 0.2 along a 5.9 (3.3), along b 7.4 (4.0), at 45 degrees
 10.1 (7.1); nu = 0.5 about twice that (b/a = 0.2 at 45 degrees: 19.3 (13.3)).
 
-dask arrays: ``tangential_stiffness`` stays lazy; the other functions compute their
-inputs once to check them.
+The no-slip stiffness and the partial-slip state are one pass of a compiled kernel
+(hertz/_tangential_kernel.c: the formulas above, with its own vectorised cos 2t, sin 2t
+(within 2 ulp) and cube root (within 1 ulp)) over the contacts.  dask arrays: ``tangential_stiffness`` and ``tangential`` stay lazy (a
+bad value is reported, with its index, when the block holding it is computed); the
+other functions compute their inputs once to check them.
 
 Masing's rule (constant P; Mindlin & Deresiewicz 1953): a branch from a reversal
 point (Q_r, delta_r) is delta = delta_r + 2 f((Q - Q_r)/2) with f the (odd) virgin
@@ -72,6 +75,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from . import _interop, _ufuncs
 from ._validate import as_float_array, broadcast_shape, error_at, first_failure, index_text
 
 __all__ = ["FrettingLoop", "Tangential", "TangentialSpring", "dundurs_beta",
@@ -125,53 +129,35 @@ def _require_load(contact, what):
 
 
 # ----------------------------------------------------------------------- compliance
-def _compliance_terms(contact):
-    """K, D and the bodies' sums W = sum (1 + nu)/E and Wn = sum nu (1 + nu)/E [1/Pa], from
-    which the no-slip compliances times pi a are c_x = W K - Wn B, c_y = W K - Wn D
-    (1/(2 pi G) = (1 + nu)/(pi E); module docstring)."""
+def _is_lazy(*values):
+    return any(_interop.is_dask(v) for v in values)
+
+
+def _stiffness_inputs(contact, direction):
+    """The inputs of the compiled no-slip stiffness (hertz/_tangential_kernel.c)."""
     nu1, nu2, e1, e2 = _moduli(contact)
-    w1 = (1.0 + nu1) / e1
-    w2 = (1.0 + nu2) / e2
-    K = contact.K
-    lam = contact.ellipticity  # a / b
-    # alpha = B / ((1-m) D) with 1 - m = 1/lam^2 and K = B + D: D = K / (1 + alpha/lam^2),
-    # no cancellation anywhere (and no overflow for the longest ellipses)
-    D = K / (1.0 + contact.alpha / lam / lam)
-    return K, D, w1 + w2, w1 * nu1 + w2 * nu2
+    return (contact.K, contact.alpha, contact.ellipticity, contact.a, nu1, nu2, e1, e2,
+            direction)
 
 
-def _direction_terms(direction):
-    """cos 2t and sin 2t (one trigonometric pass each; 1 and 0 for the scalar 0)."""
-    if np.ndim(direction) == 0 and direction == 0.0:
-        return 1.0, 0.0
-    twice = 2.0 * direction
-    return np.cos(twice), np.sin(twice)
+def _stiffness(contact, direction):
+    """No-slip stiffness along ``direction`` [N/m] (0 at zero load), numpy or dask; the
+    formula (module docstring) lives in hertz/_tangential_kernel.c."""
+    args = _stiffness_inputs(contact, direction)
+    if _is_lazy(*args):
+        return _interop.dask_map(_ufuncs.tangential_stiffness, args)
+    direction = as_float_array(direction, "direction")
+    try:
+        return _ufuncs.tangential_stiffness(*args[:-1], direction)
+    except ValueError:
+        _direction(direction)  # the error again, with the index
+        raise
 
 
-def _unit_along(contact, direction, transverse=False):
-    """The compliance along the force and across it, times pi a [1/Pa]:
-    c_x cos^2 t + c_y sin^2 t = W K - Wn (K/2 + (K/2 - D) cos 2t) and
-    (c_y - c_x) sin t cos t = Wn (K - 2D) sin 2t / 2 (B - D = K - 2D)."""
-    K, D, w_sum, wnu_sum = _compliance_terms(contact)
-    cos2, sin2 = _direction_terms(direction)
-    half_k = 0.5 * K
-    split = half_k - D  # (B - D)/2: small near a circle, exact enough beside K/2
-    along = w_sum * K - wnu_sum * (half_k + split * cos2)
-    if not transverse:
-        return along, None
-    return along, wnu_sum * split * sin2
-
-
-def _per_area(unit, contact):
-    """A unit compliance divided by pi a [m/N] (inf at zero load)."""
+def _along(contact, direction):
+    """Compliance along the force [m/N] (inf at zero load)."""
     with np.errstate(divide="ignore"):
-        return unit / np.multiply(math.pi, contact.a)
-
-
-def _along(contact, direction, transverse=False):
-    """Compliance along the force (and across it) [m/N]."""
-    along, across = _unit_along(contact, direction, transverse)
-    return _per_area(along, contact), None if across is None else _per_area(across, contact)
+        return 1.0 / _stiffness(contact, direction)
 
 
 def tangential_compliance(contact):
@@ -212,8 +198,8 @@ def tangential_compliance(contact):
     >>> print(f"{C[0, 0] * 8 * G * c.a / (2 * 1.7):.15f}")
     1.000000000000000
     """
-    cx = _along(contact, 0.0)[0]
-    cy = _along(contact, math.pi / 2)[0]
+    cx = _along(contact, 0.0)
+    cy = _along(contact, math.pi / 2)
     cx, cy = np.asarray(cx), np.asarray(cy)
     out = np.zeros(np.broadcast_shapes(cx.shape, cy.shape) + (2, 2))
     out[..., 0, 0] = cx
@@ -224,8 +210,7 @@ def tangential_compliance(contact):
 def tangential_stiffness(contact, direction=0.0):
     """No-slip tangential stiffness [N/m] along ``direction`` (the force's angle from
     the major axis [rad]): 1 / (c_x cos^2 t + c_y sin^2 t); 0 at zero load."""
-    along, _ = _unit_along(contact, _direction(direction))
-    return _out(np.multiply(math.pi, contact.a) / along)
+    return _out(_stiffness(contact, direction))
 
 
 def dundurs_beta(contact):
@@ -355,6 +340,9 @@ class Tangential:
         s = stick_a / a, the second term in the stick ellipse only; 0 outside
         the contact.  The traction vector is this times the force's unit vector.
         """
+        if _interop.any_wrapped(self._a, x, y):  # pandas, xarray, pint
+            return _interop.call_result_method(self, "traction", (("x", x, "m"), ("y", y, "m")),
+                                               "Pa", _interop.TANGENTIAL_UNITS)
         x = as_float_array(x, "x")
         y = as_float_array(y, "y")
         with np.errstate(divide="ignore", invalid="ignore"):
@@ -374,21 +362,31 @@ def _broadcast(x, shape):
 
 def partial_slip(contact, force, mu, direction=0.0) -> Tangential:
     """The :class:`Tangential` state of ``contact`` under ``force`` [N] (see
-    :meth:`hertz.Contact.tangential`)."""
-    mu = _mu(mu)
-    direction = _direction(direction)
-    load = _require_load(contact, "a tangential force")
-    q = _force_ratio(force, mu, load)
-    along, across = _along(contact, direction, transverse=True)
-    s = np.cbrt(1.0 - q)
-    virgin = _virgin(q, s)  # 1 - s^2
-    reach = 1.5 * (mu * load)  # 3 mu P / 2, times the compliance
-    k = 1.0 / along
+    :meth:`hertz.Contact.tangential`): one pass of the compiled kernel
+    (hertz/_tangential_kernel.c) over the contacts, lazily for dask arrays."""
+    nu1, nu2, e1, e2 = _moduli(contact)
+    given = (force, mu, direction)
+    if not _is_lazy(*given):
+        force, mu, direction = (as_float_array(v, name) for v, name in
+                                zip(given, ("force", "mu", "direction"), strict=True))
     a, b = contact.a, contact.b
-    shape = broadcast_shape(contact=a, force=q, mu=mu, direction=direction)
-    fields = (np.asarray(force, dtype=np.float64), mu, direction, a * s, b * s,
-              math.pi * a * b * virgin, reach * along * virgin, reach * across * virgin,
-              k * s, k, q == 1.0, dundurs_beta(contact), a, b, contact.p0)
+    args = (contact.K, contact.alpha, contact.ellipticity, a, b, contact.load, nu1, nu2, e1,
+            e2, force, mu, direction)
+    shape = broadcast_shape(contact=a, force=force, mu=mu, direction=direction)
+    if _is_lazy(*args):
+        out = _interop.dask_map(_ufuncs.partial_slip, args, nout=8)
+    else:
+        try:
+            out = _ufuncs.partial_slip(*args)
+        except ValueError:  # the checks again, in their order, for the index
+            mu = _mu(mu)
+            _direction(direction)
+            _force_ratio(force, mu, _require_load(contact, "a tangential force"))
+            raise
+    stick_a, stick_b, slip_area, disp, transverse, tangent, no_slip, sliding = out
+    sliding = sliding != 0.0
+    fields = (force, mu, direction, stick_a, stick_b, slip_area, disp, transverse, tangent,
+              no_slip, sliding, dundurs_beta(contact), a, b, contact.p0)
     fields = [_broadcast(x, shape) for x in fields]
     if not shape:
         fields[10] = bool(fields[10])
@@ -430,11 +428,17 @@ class FrettingLoop:
     def unloading(self, force):
         """Displacement [m] on the branch from Q* down to -Q*:
         delta* - 2 f((Q* - Q)/2), for -Q* <= force <= Q* [N]."""
+        if _interop.any_wrapped(self._reach, force):  # pandas, xarray, pint
+            return _interop.call_result_method(self, "unloading", (("force", force, "N"),), "m",
+                                               _interop.FRETTING_UNITS)
         force = as_float_array(force, "force")
         return _out(self.displacement_amplitude - 2.0 * self._f((self.amplitude - force) / 2.0))
 
     def reloading(self, force):
         """Displacement [m] on the branch from -Q* up to Q*: -delta* + 2 f((Q* + Q)/2)."""
+        if _interop.any_wrapped(self._reach, force):  # pandas, xarray, pint
+            return _interop.call_result_method(self, "reloading", (("force", force, "N"),), "m",
+                                               _interop.FRETTING_UNITS)
         force = as_float_array(force, "force")
         return _out(-self.displacement_amplitude + 2.0 * self._f((self.amplitude + force) / 2.0))
 
@@ -455,7 +459,7 @@ def fretting(contact, amplitude, mu, direction=0.0) -> FrettingLoop:
     direction = _direction(direction)
     load = _require_load(contact, "a tangential force")
     q = _force_ratio(amplitude, mu, load, "amplitude")
-    along, _ = _along(contact, direction)
+    along = _along(contact, direction)
     limit = mu * load
     amplitude = np.asarray(amplitude, dtype=np.float64)
     shape = np.broadcast_shapes(np.shape(q), np.shape(along))
@@ -508,7 +512,7 @@ def tangential_history(contact, forces, mu, direction=0.0):
     if forces.ndim == 0:
         raise ValueError("forces must be an array of shape (n, ...) of tangential forces in N")
     _force_ratio(np.abs(forces), mu, load, "forces")  # |Q| <= mu P
-    along, _ = _along(contact, direction)
+    along = _along(contact, direction)
     limit = mu * load
     shape = np.broadcast_shapes(forces.shape[1:], np.shape(limit), np.shape(along))
     flat = np.broadcast_to(forces, (forces.shape[0],) + shape).reshape(forces.shape[0], -1)
@@ -623,7 +627,7 @@ def proportional_loading(contact, force, mu, direction=0.0):
         i = first_failure(np.broadcast_to(q < 1.0, np.shape(q)))
         raise ValueError("force / load must stay below mu for loading without slip (it "
                          f"slides from the start){'' if not np.ndim(q) else f' at index {i}'}")
-    along, _ = _along(contact, direction)
+    along = _along(contact, direction)
     return _out(1.5 * np.asarray(force, dtype=np.float64) * along)
 
 
@@ -673,7 +677,7 @@ class TangentialSpring:
         mu = _mu(mu)
         direction = _direction(direction)
         load = _require_load(contact, "a tangential spring")
-        along, _ = _along(contact, direction)
+        along = _along(contact, direction)
         limit = mu * load
         self._shape = np.broadcast_shapes(np.shape(limit), np.shape(along))
         self._limit = np.broadcast_to(limit, self._shape).reshape(-1).copy()

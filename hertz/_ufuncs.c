@@ -1,7 +1,8 @@
 /*
  * hertz._ufuncs -- the numpy binding of the scalar C kernels (_kernel.c: the
  * ellipse solver; _contact_kernel.c: the contact formulas; _stress_kernel.c:
- * the stresses below the contact).
+ * the stresses below the contact; _tangential_kernel.c: the no-slip
+ * tangential stiffness and the Cattaneo-Mindlin partial slip).
  *
  * Every elementwise function is a numpy ufunc with one float64 loop
  * registered through the ArrayMethod API (numpy >= 2.0), so that a loop can
@@ -32,6 +33,7 @@
 #include "_contact_kernel.h"
 #include "_kernel.h"
 #include "_stress_kernel.h"
+#include "_tangential_kernel.h"
 
 #define MAXARGS 32
 
@@ -430,6 +432,73 @@ stress_block(ptrdiff_t n, const double *const *in, double *const *out, int varia
     return 0;
 }
 
+/* The tangential kernels.  The error names the input and its value, in the
+ * words of hertz/_tangential.py (which, for numpy input, checks the arrays
+ * again for the index; dask blocks get it from hertz._interop.dask_map). */
+static int
+tangential_error(int code, const double *const *in, ptrdiff_t i, int stiffness_only)
+{
+    PyGILState_STATE state = PyGILState_Ensure();
+    int direction = stiffness_only ? HERTZ_T_STIFFNESS_NIN - 1 : HERTZ_T_DIRECTION;
+    char *v = NULL, *w = NULL;
+    switch (code) {
+    case HERTZ_T_BAD_MU:
+        v = repr(in[HERTZ_T_MU][i]);
+        PyErr_Format(PyExc_ValueError,
+                     "mu must be a positive, finite coefficient of friction, got %s", v);
+        break;
+    case HERTZ_T_BAD_DIRECTION:
+        v = repr(in[direction][i]);
+        PyErr_Format(PyExc_ValueError, "direction must be a finite angle in rad, got %s", v);
+        break;
+    case HERTZ_T_BAD_LOAD:
+        v = repr(in[HERTZ_T_LOAD][i]);
+        PyErr_Format(PyExc_ValueError,
+                     "contact.load must be positive for a tangential force (a contact without "
+                     "normal load carries no tangential force), got %s", v);
+        break;
+    case HERTZ_T_BAD_FORCE:
+        v = repr(in[HERTZ_T_FORCE][i]);
+        PyErr_Format(PyExc_ValueError,
+                     "force must be a non-negative, finite tangential force in N, got %s", v);
+        break;
+    case HERTZ_T_ABOVE_LIMIT:
+        v = repr(in[HERTZ_T_MU][i] * in[HERTZ_T_LOAD][i]);
+        w = repr(in[HERTZ_T_FORCE][i]);
+        PyErr_Format(PyExc_ValueError,
+                     "force must be at most mu * load = %s N (the limit of friction; beyond "
+                     "it the contact slides as a whole), got %s", v, w);
+        break;
+    default:
+        PyErr_Format(PyExc_SystemError, "hertz: unknown tangential error code %d", code);
+    }
+    PyMem_Free(v);
+    PyMem_Free(w);
+    PyGILState_Release(state);
+    return -1;
+}
+
+/* inputs: K, alpha, lambda, a, nu1, nu2, E1, E2, direction; output: k. */
+static int
+tangential_stiffness_block(ptrdiff_t n, const double *const *in, double *const *out,
+                           int variant)
+{
+    (void)variant;
+    ptrdiff_t bad = 0;
+    int code = hertz_tangential_stiffness_block(n, in, out[0], &bad);
+    return code == HERTZ_T_OK ? 0 : tangential_error(code, in, bad, 1);
+}
+
+/* inputs: the HERTZ_T_NIN of _tangential_kernel.h; outputs: its HERTZ_T_NOUT. */
+static int
+partial_slip_block(ptrdiff_t n, const double *const *in, double *const *out, int variant)
+{
+    (void)variant;
+    ptrdiff_t bad = 0;
+    int code = hertz_partial_slip_block(n, in, out, &bad);
+    return code == HERTZ_T_OK ? 0 : tangential_error(code, in, bad, 0);
+}
+
 /* ------------------------------------------------------ the ufunc loops */
 
 /* Run `fn` over a strided ufunc call in blocks: contiguous operands are used
@@ -534,6 +603,8 @@ LOOP(point_stress_loop, 6, 6, stress_block, 0)
 LOOP(subsurface_loop, 3, 10, stress_block, 1)
 LOOP(line_stress_loop, 4, 4, stress_block, 2)
 LOOP(line_subsurface_loop, 2, 7, stress_block, 3)
+LOOP(tangential_stiffness_loop, HERTZ_T_STIFFNESS_NIN, 1, tangential_stiffness_block, 0)
+LOOP(partial_slip_loop, HERTZ_T_NIN, HERTZ_T_NOUT, partial_slip_block, 0)
 
 /* Any real dtype (and Python int/float) is cast to float64; bool, complex,
  * strings, datetimes and objects are refused. */
@@ -889,6 +960,13 @@ PyInit__ufuncs(void)
          "b, nu, x, z -> sxx, szz, sxz, syy per p0, line contact (private)"},
         {"line_subsurface", 2, 7, line_subsurface_loop,
          "b, nu -> the maxima below a line contact per p0 (private)"},
+        {"tangential_stiffness", HERTZ_T_STIFFNESS_NIN, 1, tangential_stiffness_loop,
+         "K, alpha, lambda, a, nu1, nu2, E1, E2, direction -> the no-slip tangential "
+         "stiffness (private)"},
+        {"partial_slip", HERTZ_T_NIN, HERTZ_T_NOUT, partial_slip_loop,
+         "K, alpha, lambda, a, b, load, nu1, nu2, E1, E2, force, mu, direction -> stick_a, "
+         "stick_b, slip_area, displacement, displacement_transverse, stiffness, "
+         "no_slip_stiffness, sliding (private)"},
     };
     for (size_t i = 0; i < sizeof table / sizeof table[0]; ++i) {
         if (add_ufunc(module, table[i].name, table[i].doc, table[i].nin, table[i].nout,

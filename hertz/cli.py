@@ -9,6 +9,7 @@ scene file change any of it::
     hertz --print-scene my_scene.toml        # the default scene, to edit
     hertz --scene my_scene.toml --angle-deg 30
     hertz --yield-strength 1.5e9 --plot stresses.png
+    hertz --tangential 200 --mu 0.3          # Cattaneo-Mindlin partial slip, fretting
 
 ``hertz --help`` ends with the scene-file format (every key, its unit and
 default) and the default scene; both are generated from ``SCENE_KEYS``,
@@ -49,6 +50,8 @@ SCENE_KEYS = (
     ("load", "N", "normal force, >= 0 (0: no contact patch, no stresses)"),
     ("approach", "m", "instead of load: the approach of the bodies (the load is computed)"),
     ("angle_deg", "deg", "angle between the bodies' x axes"),
+    ("tangential", "N", "tangential force along the ellipse's major axis, <= mu * load"),
+    ("mu", "-", "coefficient of friction, > 0 (tangential and mu: both or neither)"),
 )
 #: The keys of the [body1] and [body2] tables: (key, unit, meaning).
 BODY_KEYS = (
@@ -60,7 +63,9 @@ BODY_KEYS = (
 _BODY_KEYS = tuple(key for key, _, _ in BODY_KEYS)
 #: Options that change the scene (the others only add output).
 _SCENE_OPTIONS = ("r1x", "r1y", "e1", "nu1", "r2x", "r2y", "e2", "nu2", "load", "approach",
-                  "angle_deg")
+                  "angle_deg", "tangential", "mu")
+#: The scene keys of the tangential force, set together or not at all.
+_TANGENTIAL_KEYS = ("tangential", "mu")
 #: A scene file is a few lines; refusing big ones keeps ``--scene /dev/zero`` from
 #: filling the memory.
 _MAX_SCENE_BYTES = 1 << 20
@@ -113,6 +118,14 @@ def _parser() -> argparse.ArgumentParser:
                       help="approach of the bodies [m] (the load is computed)")
     p.add_argument("--angle-deg", type=_number, metavar="DEG",
                    help="angle between the bodies' x axes [degrees]")
+    p.add_argument("--tangential", type=_number, metavar="N",
+                   help="tangential force [N] along the contact ellipse's major axis, rising "
+                        "from 0 at constant load (with --mu): adds the no-slip tangential "
+                        "stiffness, the stick zone, the displacement, the tangent stiffness, "
+                        "whether it slides, and the energy of a fretting cycle between -N and N "
+                        "(Cattaneo-Mindlin, Mindlin-Deresiewicz)")
+    p.add_argument("--mu", type=_number, metavar="MU",
+                   help="coefficient of friction [-], > 0 (with --tangential)")
     p.add_argument("--yield-strength", type=_number, metavar="PA",
                    help="yield strength of both bodies [Pa]: adds the load at which each first "
                         "yields (von Mises and Tresca)")
@@ -164,7 +177,14 @@ def scene_toml(scene: dict, encoding: str | None = None) -> str:
     comments = {"Rx": "m; > 0 convex, < 0 concave, inf flat", "Ry": "m", "E": "Pa", "nu": "-"}
     lines = ["# hertz scene file: hertz --scene FILE reads it; hertz --help lists every key",
              f"name = {_toml_string(scene['name'], encoding)}"]
+    if "tangential" in scene:
+        top += [("tangential", _toml_number(scene["tangential"]),
+                 "N along the major axis (0 <= it <= mu * load)"),
+                ("mu", _toml_number(scene["mu"]), "-, coefficient of friction")]
     lines += _aligned(top)
+    if "tangential" not in scene:
+        lines.append("# tangential = 100.0  # N along the major axis, with mu = 0.3: partial "
+                     "slip and fretting")
     for name in ("body1", "body2"):
         lines += ["", f"[{name}]"]
         lines += _aligned([(key, _toml_number(scene[name][key]), comments[key])
@@ -250,7 +270,7 @@ def _read_scene(path: str) -> dict:
                 raise _UsageError(f"scene file: unknown key(s) in [{key}]: {names} "
                                   f"(allowed: {', '.join(_BODY_KEYS)})")
             merged[key].update({k: _scalar(v, f"{key}.{k}") for k, v in value.items()})
-        elif key in ("load", "approach", "angle_deg"):
+        elif key in ("load", "approach", "angle_deg", *_TANGENTIAL_KEYS):
             merged[key] = _scalar(value, key)
         elif key == "name":
             if not isinstance(value, str):
@@ -323,6 +343,14 @@ def _scene(args) -> dict:
         scene.pop("load", None)
     if args.angle_deg is not None:
         scene["angle_deg"] = args.angle_deg
+    for key in _TANGENTIAL_KEYS:
+        if getattr(args, key) is not None:
+            scene[key] = getattr(args, key)
+    given = [key for key in _TANGENTIAL_KEYS if key in scene]
+    if len(given) == 1:
+        missing = "mu" if given == ["tangential"] else "tangential"
+        raise _UsageError(f"--{given[0]} needs --{missing} (scene key {missing}): the "
+                          "tangential force and the coefficient of friction go together")
     if not args.scene and any(getattr(args, opt) is not None for opt in _SCENE_OPTIONS):
         scene["name"] = "custom scene"
     return scene
@@ -400,6 +428,39 @@ def _fields(c) -> dict:
     return {k: _finite(getattr(c, k), k) for k in _CONTACT_FIELDS}
 
 
+def _tangential(scene, c) -> dict | None:
+    """The tangential results of the scene's force and mu (None without them): the no-slip
+    stiffness along the force, Cattaneo-Mindlin's stick ellipse, displacement and tangent
+    stiffness, whether it slides (force = mu P), and the energy of a fretting cycle
+    between -force and force (Mindlin-Deresiewicz)."""
+    if "tangential" not in scene:
+        return None
+    force, mu = scene["tangential"], scene["mu"]
+    if not (0 < mu < math.inf):
+        raise _UsageError(f"mu must be a positive, finite coefficient of friction, got {mu!r}")
+    if not (0 <= force < math.inf):
+        raise _UsageError(f"tangential must be a finite force >= 0 in N, got {force!r}")
+    load = float(c.load)
+    if not (0 < load < math.inf):
+        why = "zero: the contact carries no tangential force" if load == 0 else "beyond a double"
+        raise _UsageError(f"a tangential force needs a normal load > 0 and finite; the load is "
+                          f"{why}")
+    limit = mu * load
+    if force > limit:
+        raise _UsageError(f"tangential = {force!r} N is above mu * load = {limit!r} N: the "
+                          "contact slides as a whole (partial slip needs tangential <= mu * "
+                          "load)")
+    t = c.tangential(force, mu)
+    energy = c.fretting(force, mu).energy
+    out = {"force": force, "mu": mu, "direction": 0.0}  # rad from the major axis
+    for key, value in (("no_slip_stiffness", t.no_slip_stiffness), ("stick_a", t.stick_a),
+                       ("stick_b", t.stick_b), ("displacement", t.displacement),
+                       ("stiffness", t.stiffness), ("fretting_energy", energy)):
+        out[key] = _finite(value, f"the tangential {key}")
+    out["sliding"] = bool(t.sliding)
+    return out
+
+
 # --- output --------------------------------------------------------------------------------
 
 _PREFIXES = [(1e9, "G"), (1e6, "M"), (1e3, "k"), (1.0, ""), (1e-3, "m"), (1e-6, "u"), (1e-9, "n")]
@@ -455,9 +516,25 @@ def _table(scene, body1, body2, f) -> str:
     return "\n".join(lines)
 
 
-def _json(scene, fields, stresses) -> str:
-    return json.dumps({"scene": scene["name"], **fields, "stresses": stresses},
+def _json(scene, fields, stresses, tangential) -> str:
+    extra = {} if tangential is None else {"tangential": tangential}
+    return json.dumps({"scene": scene["name"], **fields, "stresses": stresses, **extra},
                       allow_nan=False)
+
+
+def _tangential_table(t) -> list[str]:
+    rows = [("no-slip stiffness along Q", _si(t["no_slip_stiffness"], "N/m")),
+            ("stick zone semi-axes", f"{_si(t['stick_a'], 'm')}, {_si(t['stick_b'], 'm')}"),
+            ("displacement along Q", _si(t["displacement"], "m")),
+            ("tangent stiffness dQ/d(disp)", _si(t["stiffness"], "N/m")),
+            ("sliding", "yes: Q = mu P, the whole contact slips" if t["sliding"] else
+             "no: partial slip"),
+            ("fretting loop energy", f"{_si(t['fretting_energy'], 'J')} per cycle between -Q "
+             "and Q")]
+    width = max(len(name) for name, _ in rows) + 2
+    return [f"  tangential force Q = {_si(t['force'], 'N')} along the major axis, "
+            f"mu = {t['mu']:g} (Cattaneo-Mindlin):",
+            *(f"    {name:<{width}}{value}" for name, value in rows)]
 
 
 def _stress_table(stresses, yield_strength, zero_load: bool) -> list[str]:
@@ -640,13 +717,15 @@ def _run(argv) -> int:
             _print_scene(scene, args.print_scene)
             return 0
         fields = _fields(c)
+        tangential = _tangential(scene, c)
         stresses = _stresses(scene, body1, body2, c, args.yield_strength)
         if args.plot is not None:
             _plot(c, scene, args.plot)
     if args.json:
-        text = _json(scene, fields, stresses)
+        text = _json(scene, fields, stresses, tangential)
     else:
         text = "\n".join([_table(scene, body1, body2, fields),
+                          *([] if tangential is None else _tangential_table(tangential)),
                           *_stress_table(stresses, args.yield_strength, not c.a > 0)])
     _write(text)
     return 0

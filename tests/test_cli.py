@@ -385,6 +385,7 @@ def test_help_ends_with_the_scene_format_and_the_default_scene(capsys):
     ["--load", "1e-300", "--r1x", "1e-3", "--r1y", "2.5e-3", "--nu1", "-0.999", "--e1", "1e300",
      "--r2x", "1e-6", "--r2y", "1e6"],
     ["--load", "0"],
+    ["--load", "800", "--tangential", "123.456789", "--mu", "0.17"],
 ])
 def test_print_scene_reads_back_to_the_same_result(tmp_path, capsys, argv):
     path = tmp_path / "scene.toml"
@@ -421,3 +422,91 @@ def test_a_toml_string_reads_back_to_the_same_text(text):
     assert tomllib.loads(f"n = {_toml_string(text)}")["n"] == text
     ascii_only = _toml_string(text, "ascii")
     assert ascii_only.isascii() and tomllib.loads(f"n = {ascii_only}")["n"] == text
+
+
+# --- --tangential FORCE --mu MU ------------------------------------------------------------
+
+#: a steel ball of radius 5 mm on glass, 200 N: dissimilar materials, so the no-slip
+#: stiffness sums two different bodies' (2 - nu)/G
+BALL_ON_GLASS = ("--r1x", "5e-3", "--r1y", "5e-3", "--e1", "210e9", "--nu1", "0.3",
+                 "--r2x", "inf", "--r2y", "inf", "--e2", "70e9", "--nu2", "0.22",
+                 "--load", "200")
+
+
+def test_tangential_of_a_sphere_on_a_plane_against_closed_forms_and_the_api():
+    force, mu, load = 37.0, 0.25, 200.0
+    status, out, err = run_command(*BALL_ON_GLASS, "--tangential", str(force), "--mu", str(mu),
+                                   "--json")
+    assert status == 0 and err == ""
+    data = json.loads(out)
+    t = data["tangential"]
+    # the API, bit for bit
+    c = hertz.contact(hertz.Body.sphere(5e-3, 210e9, 0.3), hertz.Body.plane(70e9, 0.22),
+                      load=load)
+    api = c.tangential(force, mu)
+    assert t["no_slip_stiffness"] == c.tangential_stiffness() == api.no_slip_stiffness
+    for key in ("stick_a", "stick_b", "displacement", "stiffness"):
+        assert t[key] == getattr(api, key), key
+    assert t["fretting_energy"] == c.fretting(force, mu).energy
+    assert t["sliding"] is False and t["force"] == force and t["mu"] == mu
+    # closed forms for a circle (Mindlin 1949; Johnson, Contact Mechanics, ch. 7)
+    a = data["a"]
+    k = 8 * a / ((2 - 0.3) * 2 * 1.3 / 210e9 + (2 - 0.22) * 2 * 1.22 / 70e9)
+    q = force / (mu * load)
+    # (observed: 0 to 2.2e-16 for the first four, 2.9e-15 for the energy's cancelling form)
+    assert t["no_slip_stiffness"] == pytest.approx(k, rel=1e-15)
+    assert t["stick_a"] == t["stick_b"] == pytest.approx(a * (1 - q) ** (1 / 3), rel=1e-15)
+    delta = 3 * mu * load * (1 - (1 - q) ** (2 / 3)) / (2 * k)
+    assert t["displacement"] == pytest.approx(delta, rel=1e-15)
+    assert t["stiffness"] == pytest.approx(k * (1 - q) ** (1 / 3), rel=1e-15)
+    energy = (36 * (mu * load) ** 2 / (5 * k)
+              * (1 - (1 - q) ** (5 / 3) - 5 * q / 6 * (1 + (1 - q) ** (2 / 3))))
+    assert t["fretting_energy"] == pytest.approx(energy, rel=5e-15)
+
+
+def test_tangential_table_and_the_limit_of_friction():
+    status, out, err = run_command(*BALL_ON_GLASS, "--tangential", "50", "--mu", "0.25")
+    assert status == 0 and err == ""
+    assert "tangential force Q = 50 N along the major axis, mu = 0.25" in out
+    assert "no-slip stiffness along Q" in out and "stick zone semi-axes          0 m, 0 m" in out
+    assert "sliding                       yes" in out and " uJ per cycle" in out
+    assert "tangential" not in run_command(*BALL_ON_GLASS, "--json")[1]
+
+
+def test_tangential_in_a_scene_file(tmp_path):
+    scene = tmp_path / "ball.toml"
+    scene.write_text('load = 200\ntangential = "37"\nmu = 0.25\n[body1]\nRx = 5e-3\n'
+                     'Ry = 5e-3\n[body2]\nRx = "inf"\nRy = "inf"\nE = 70e9\nnu = 0.22\n')
+    from_file = json.loads(run_command("--scene", str(scene), "--json")[1])
+    direct = json.loads(run_command(*BALL_ON_GLASS, "--tangential", "37", "--mu", "0.25",
+                                    "--json")[1])
+    assert from_file["tangential"] == direct["tangential"]
+    # an option overrides the file
+    assert json.loads(run_command("--scene", str(scene), "--mu", "0.5", "--json")[1]
+                      )["tangential"]["mu"] == 0.5
+
+
+@pytest.mark.parametrize("argv, message", [
+    (["--tangential", "10", "--mu", "0"], "mu must be a positive, finite coefficient of "
+                                          "friction, got 0.0"),
+    (["--tangential", "10", "--mu", "-0.2"], "mu must be a positive"),
+    (["--tangential", "10", "--mu", "inf"], "mu must be a positive"),
+    (["--tangential=-1", "--mu", "0.3"], "tangential must be a finite force >= 0 in N, got -1.0"),
+    (["--tangential", "nan", "--mu", "0.3"], "tangential must be a finite force"),
+    (["--tangential", "60.5", "--mu", "0.3"], "tangential = 60.5 N is above mu * load = 60.0 N: "
+                                              "the contact slides as a whole"),
+    (["--tangential", "10"], "--tangential needs --mu"),
+    (["--mu", "0.3"], "--mu needs --tangential"),
+    (["--tangential", "10", "--mu", "0.3", "--load", "0"], "needs a normal load > 0"),
+    (["--tangential", "abc", "--mu", "0.3"], "not a number"),
+])
+def test_tangential_errors_are_one_line_and_status_2(argv, message):
+    # the load 200 N of BALL_ON_GLASS, unless the case gives its own
+    assert_one_line_error(*run_command(*BALL_ON_GLASS, *argv), message)
+
+
+def test_help_names_the_tangential_keys(capsys):
+    with pytest.raises(SystemExit):
+        main(["--help"])
+    out = capsys.readouterr().out
+    assert "  tangential [N]" in out and "  mu [-]" in out and "--tangential N" in out

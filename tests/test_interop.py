@@ -382,3 +382,105 @@ def test_line_contact_of_dataarrays(xr):
     assert lc.half_width.dims == ("roller", "load")
     np.testing.assert_array_equal(lc.half_width.values, ref.half_width)
     np.testing.assert_array_equal(lc.stress(0.0, 1e-5).values, ref.stress(0.0, 1e-5))
+
+
+# ------------------------------------------------------------------------------ tangential
+
+TANGENTIAL_UNITS = {"force": "N", "mu": "", "direction": "rad", "stick_a": "m", "stick_b": "m",
+                    "slip_area": "m**2", "displacement": "m", "displacement_transverse": "m",
+                    "stiffness": "N/m", "no_slip_stiffness": "N/m", "dundurs_beta": ""}
+FRETTING_UNITS = {"amplitude": "N", "displacement_amplitude": "m", "energy": "J",
+                  "stiffness": "N/m", "mu": "", "load": "N"}
+
+
+def public(result):
+    return {k: v for k, v in fields_of(result).items() if not k.startswith("_")}
+
+
+def test_tangential_of_a_quantity_contact_in_si_units(ureg):
+    ball = hertz.Body.sphere(5 * ureg.mm, 210 * ureg.GPa, 0.3)
+    glass = hertz.Body.plane(70 * ureg.GPa, 0.22)
+    c = hertz.contact(ball, glass, load=0.1 * ureg.kN)
+    ref = hertz.contact(hertz.Body.sphere(5e-3, *STEEL), hertz.Body.plane(70e9, 0.22), load=100.0)
+    k = c.tangential_stiffness(30 * ureg.deg)
+    assert k.units == ureg.N / ureg.m and k.magnitude == ref.tangential_stiffness(math.pi / 6)
+    t = c.tangential(12 * ureg.N, 0.3, direction=1.0)
+    t_ref = ref.tangential(12.0, 0.3, direction=1.0)
+    for name, unit in TANGENTIAL_UNITS.items():
+        value = getattr(t, name)
+        assert value.units == ureg.Unit(unit or "dimensionless"), name
+        assert value.magnitude == getattr(t_ref, name), name
+    assert t.sliding is False
+    x = 0.5 * c.a
+    tr = t.traction(x.to("mm"), 0 * ureg.m)
+    assert tr.units == ureg.Pa and tr.magnitude == t_ref.traction(0.5 * ref.a, 0.0)
+    loop = c.fretting(5000 * ureg.mN, 0.3)
+    loop_ref = ref.fretting(5.0, 0.3)
+    for name, unit in FRETTING_UNITS.items():
+        value = getattr(loop, name)
+        assert value.units == ureg.Unit(unit or "dimensionless"), name
+        assert value.magnitude == getattr(loop_ref, name), name
+    assert loop.unloading(-2 * ureg.N).magnitude == loop_ref.unloading(-2.0)
+    assert loop.reloading(1 * ureg.N).units == ureg.m
+    # a closed form beside the numpy path: W -> 2 Q*^3 / (9 mu P k) as Q* / (mu P) -> 0
+    small = c.fretting(1 * ureg.mN, 0.3).energy.to("J").magnitude
+    k0 = c.tangential_stiffness().magnitude
+    assert abs(small / (2 * 1e-9 / (9 * 0.3 * 100.0 * k0)) - 1) < 1e-4
+    with pytest.raises(TypeError, match=r"^force must be a force"):
+        c.tangential(12 * ureg.m, 0.3)
+    with pytest.raises(ValueError, match=r"^mu must be a positive"):
+        c.fretting(1 * ureg.N, -0.3)
+
+
+def test_tangential_of_pandas_and_xarray_contacts(pd, xr, table):
+    plane = hertz.Body.plane(70e9, 0.33)
+    c = hertz.contact(hertz.Body.sphere(table["radius"], *STEEL), plane, load=table["load"])
+    ref = hertz.contact(hertz.Body.sphere(table["radius"].to_numpy(), *STEEL), plane,
+                        load=table["load"].to_numpy())
+    force = 0.1 * table["load"]
+    k = c.tangential_stiffness(table["angle"])
+    assert k.name == "tangential_stiffness" and k.index.equals(table.index)
+    np.testing.assert_array_equal(k.to_numpy(), ref.tangential_stiffness(table["angle"]
+                                                                           .to_numpy()))
+    t, t_ref = c.tangential(force, 0.3), ref.tangential(force.to_numpy(), 0.3)
+    for name, value in public(t).items():
+        assert isinstance(value, pd.Series) and value.name == name, name
+        assert value.index.equals(table.index), name
+        np.testing.assert_array_equal(value.to_numpy(), np.broadcast_to(getattr(t_ref, name),
+                                                                         (6,)), err_msg=name)
+    assert t.sliding.dtype == bool
+    tr = t.traction(0.3 * c.a, 0.0)
+    assert tr.name == "traction"
+    np.testing.assert_array_equal(tr.to_numpy(), t_ref.traction(0.3 * ref.a, 0.0))
+    loop, loop_ref = c.fretting(force, 0.3), ref.fretting(force.to_numpy(), 0.3)
+    for name, value in public(loop).items():
+        assert isinstance(value, pd.Series) and value.name == name, name
+        np.testing.assert_array_equal(value.to_numpy(), np.broadcast_to(getattr(loop_ref, name),
+                                                                         (6,)), err_msg=name)
+    with pytest.raises(ValueError, match=r"force must be at most mu \* load .* at index 2 "
+                                         r"\(label 'ball2'\)"):
+        c.tangential(force.where(force.index != "ball2", 1e6), 0.3)
+
+    radius = xr.DataArray([4e-3, 6e-3, 8e-3], dims="ball")
+    mu = xr.DataArray([0.2, 0.5], dims="friction")
+    cx = hertz.contact(hertz.Body.sphere(radius, *STEEL), plane, load=100.0)
+    ref = hertz.contact(hertz.Body.sphere(radius.values[:, None], *STEEL), plane, load=100.0)
+    tx, tx_ref = cx.tangential(15.0, mu), ref.tangential(15.0, mu.values[None, :])
+    assert tx.stick_b.dims == ("ball", "friction") and tx.stick_b.name == "stick_b"
+    np.testing.assert_array_equal(tx.displacement.values, tx_ref.displacement)
+    fx = cx.fretting(15.0, mu)
+    assert fx.energy.name == "energy"
+    np.testing.assert_array_equal(fx.energy.values, ref.fretting(15.0, mu.values[None, :]).energy)
+
+
+def test_tangential_of_quantities_of_dask_arrays_stays_lazy(ureg):
+    da = pytest.importorskip("dask.array")
+    radius = da.from_array(np.array([4.0, 6.0, 8.0]), chunks=2) * ureg.mm
+    c = hertz.contact(hertz.Body.sphere(radius, *STEEL), hertz.Body.plane(*STEEL), load=10.0)
+    ref = hertz.contact(hertz.Body.sphere(np.array([4.0, 6.0, 8.0]) * 1e-3, *STEEL),
+                        hertz.Body.plane(*STEEL), load=10.0)
+    t = c.tangential(3.0 * ureg.N, 0.3)
+    assert isinstance(t.stick_a.magnitude, da.Array) and t.stick_a.units == ureg.m
+    np.testing.assert_array_equal(t.stick_a.magnitude.compute(), ref.tangential(3.0, 0.3).stick_a)
+    assert t.sliding.compute().dtype == bool
+    assert c.fretting(3.0, 0.3).energy.units == ureg.J
