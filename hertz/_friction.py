@@ -50,12 +50,16 @@ Checked against an mpmath quadrature of Cerruti's solution (tests/reference_fric
 
 from __future__ import annotations
 
-import numpy as np
-from scipy import special
+from dataclasses import dataclass
 
+import numpy as np
+from scipy import optimize, special
+
+from ._stress import point_stress
 from ._validate import as_float_array
 
-__all__ = ["partial_slip_stress", "sliding_stress"]
+__all__ = ["SlidingMaxima", "partial_slip_stress", "sliding_maxima", "sliding_stress",
+           "surface_von_mises_mu"]
 
 # trapezoid step in v = log(w - l); the integrands are analytic for |Im v| < pi
 _STEP = 0.4
@@ -63,6 +67,7 @@ _STEP = 0.4
 # and at least exp(-3v/2) (w -> infinity); ends where they are below 1e-17 of their peak
 _LOW, _LOW_SURFACE, _HIGH = 40.0, 80.0, 27.0
 _CHUNK = 2048
+_LOG_Z_MIN = np.log(1e-7)
 
 
 def _ellipsoidal_coordinate(a2, b2, x2, y2, z2):
@@ -73,14 +78,18 @@ def _ellipsoidal_coordinate(a2, b2, x2, y2, z2):
     monotonically onto the root.
     """
     lam = x2 + y2 + z2
-    inside = (z2 == 0) & (x2 / a2 + y2 / b2 <= 1.0)
+    # 1 - x^2/(a^2+l) - y^2/(b^2+l) = e0 + l (x^2/(a^2 A) + y^2/(b^2 B)): no cancellation
+    # for l << a^2 beyond the rounding of e0 itself
+    e0 = 1.0 - x2 / a2 - y2 / b2
+    inside = (z2 == 0) & (e0 >= 0)
     lam = np.where(inside, 0.0, lam)
     for _ in range(200):
         A, B = a2 + lam, b2 + lam
-        f = lam - z2 - x2 * lam / A - y2 * lam / B
-        df = 1.0 - x2 * a2 / (A * A) - y2 * b2 / (B * B)
+        f = lam * (e0 + lam * (x2 / (a2 * A) + y2 / (b2 * B))) - z2
+        df = e0 + lam * (x2 * (2.0 * a2 + lam) / (a2 * A * A)
+                         + y2 * (2.0 * b2 + lam) / (b2 * B * B))
         step = np.where(inside | (f <= 0), 0.0, f / np.where(df > 0, df, 1.0))
-        new = lam - step
+        new = np.maximum(lam - step, z2)      # l >= z^2 (rounding near l = z^2)
         done = ~(new < lam) | (step <= 4e-16 * lam)
         lam = np.where(new < lam, new, lam)
         if np.all(done):
@@ -317,3 +326,253 @@ def partial_slip_stress(a, b, p0, mu, nu, x, y, z, stick_ratio, direction=0.0):
     stick = sliding_stress(r * a_, r * b_, np.where(has_stick, r, 0.0) * as_float_array(p0, "p0"),
                            mu, nu, x, y, z, direction)
     return full - stick
+
+
+# ---------------------------------------------------------------- maxima of the combined field
+@dataclass(frozen=True, slots=True)
+class SlidingMaxima:
+    """The largest stresses in a body under a sliding Hertz contact (normal + friction).
+
+    Stresses in Pa, positions in m in the ellipse frame (x along a, y along b, z depth).
+
+    Attributes
+    ----------
+    von_mises, x_von_mises, y_von_mises, z_von_mises : float
+        The largest von Mises stress [Pa] and where it is [m] (z = 0: on the surface).
+    tau_max, x_tau_max, y_tau_max, z_tau_max : float
+        The largest principal shear stress (s1 - s3)/2 (Tresca/2) [Pa] and where it is [m].
+    tensile, x_tensile, y_tensile : float
+        The largest principal stress on the surface [Pa] (tension, at the trailing edge)
+        and where it is [m].
+    """
+
+    von_mises: float
+    x_von_mises: float
+    y_von_mises: float
+    z_von_mises: float
+    tau_max: float
+    x_tau_max: float
+    y_tau_max: float
+    z_tau_max: float
+    tensile: float
+    x_tensile: float
+    y_tensile: float
+
+
+def _principal(s):
+    return np.linalg.eigvalsh(s)
+
+
+class _Field:
+    """The combined normal + sliding stress / p0 of the contact a = 1, b = ratio; in_plane:
+    only the symmetry plane through the traction (y = 0 for traction along x, x = 0 along
+    y) is searched."""
+
+    def __init__(self, ratio, mu, nu, direction):
+        self.ratio, self.mu, self.nu, self.direction = ratio, mu, nu, direction
+        c, s = np.cos(direction), np.sin(direction)
+        self.plane = "y" if s == 0 else ("x" if c == 0 or abs(c) < 1e-300 else None)
+
+    def stress(self, x, y, z):
+        x, y, z = np.broadcast_arrays(*(np.asarray(v, dtype=float) for v in (x, y, z)))
+        return (point_stress(1.0, self.ratio, 1.0, self.nu, x, y, z)
+                + sliding_stress(1.0, self.ratio, 1.0, self.mu, self.nu, x, y, z,
+                                 self.direction))
+
+    def values(self, x, y, z):
+        """von Mises, (s1 - s3)/2, s1."""
+        e = _principal(self.stress(x, y, z))
+        d = np.stack([e[..., 0] - e[..., 1], e[..., 1] - e[..., 2], e[..., 2] - e[..., 0]], -1)
+        return np.sqrt(0.5 * np.sum(d * d, axis=-1)), 0.5 * (e[..., 2] - e[..., 0]), e[..., 2]
+
+    def grid(self, surface):
+        """Points of a coarse grid over the surface or below it."""
+        b = self.ratio
+        x = np.linspace(-1.3, 1.3, 53)
+        y = np.linspace(-1.3 * b, 1.3 * b, 27)
+        if self.plane == "y":
+            y = np.zeros(1)
+        elif self.plane == "x":
+            x = np.zeros(1)
+            y = np.linspace(-1.3 * b, 1.3 * b, 53)
+        z = np.zeros(1) if surface else np.concatenate(
+            [np.geomspace(1e-3, 0.1, 8), np.linspace(0.15, 1.2, 22)]) * max(b, 0.2)
+        return np.meshgrid(x, y, z, indexing="ij")
+
+    def edge(self, n=721):
+        """Points on the edge of the contact: angles, x, y."""
+        if self.plane is not None:
+            phi = np.array([0.0, np.pi]) if self.plane == "y" else np.array([-np.pi, np.pi]) / 2
+        else:
+            phi = np.linspace(-np.pi, np.pi, n)
+        return phi, np.cos(phi), self.ratio * np.sin(phi)
+
+
+def _refine(field, which, start, surface):
+    """Local maximum from start: Nelder-Mead over the surface (x, y) or below it
+    (x, y, log z), within the symmetry plane if there is one; (value, x, y, z)."""
+    free = [k for k in (0, 1) if not (field.plane == "y" and k == 1)
+            and not (field.plane == "x" and k == 0)]
+    x0 = list(start[:2]) + [np.log(max(start[2], 1e-6))]
+    keys = free + ([] if surface else [2])
+
+    def point(p):
+        q = list(x0)
+        for k, v in zip(keys, p, strict=True):
+            q[k] = v
+        # below 1e-7 a the field is the surface's (the surface candidate covers it)
+        return q[0], q[1], (0.0 if surface else np.exp(max(q[2], _LOG_Z_MIN)))
+
+    def f(p):
+        return -float(field.values(*point(p))[which])
+
+    p0 = np.array([x0[k] for k in keys])
+    simplex = [p0] + [p0 + 0.02 * np.eye(len(p0))[k] for k in range(len(p0))]
+    res = optimize.minimize(f, p0, method="Nelder-Mead", options={
+        "initial_simplex": simplex, "xatol": 1e-8, "fatol": 1e-15, "maxiter": 3000,
+        "maxfev": 6000})
+    return (-res.fun,) + point(res.x)
+
+
+def _edge_maximum(field, which):
+    """The largest value on the edge of the contact (where the field has square-root
+    kinks that a search over the surface cannot resolve); (value, x, y, 0)."""
+    phi, x, y = field.edge()
+    val = field.values(x, y, 0.0)[which]
+    k = int(np.argmax(val))
+    if field.plane is None:
+        b = field.ratio
+        step = phi[1] - phi[0]
+        res = optimize.minimize_scalar(
+            lambda p: -float(field.values(np.cos(p), b * np.sin(p), 0.0)[which]),
+            method="bounded", bounds=(phi[k] - step, phi[k] + step), options={"xatol": 1e-12})
+        if -res.fun > val[k]:
+            return -res.fun, np.cos(res.x), b * np.sin(res.x), 0.0
+    return val[k], x[k], y[k], 0.0
+
+
+def _maximum(field, which, grids, surface_only=False):
+    """The global maximum (value, x, y, z) over the surface (its edge included) and below."""
+    cands = [_edge_maximum(field, which)]
+    for surface in ((True,) if surface_only else (True, False)):
+        X, Y, Z, vals = grids[surface]
+        i = np.unravel_index(int(np.argmax(vals[which])), vals[which].shape)
+        cands.append(_refine(field, which, (X[i], Y[i], Z[i]), surface))
+    return max(cands, key=lambda r: r[0])
+
+
+def _grids(field):
+    out = {}
+    for surface in (True, False):
+        X, Y, Z = field.grid(surface)
+        out[surface] = (X, Y, Z, field.values(X, Y, Z))
+    return out
+
+
+def _scalar_inputs(a, b, p0, mu, nu, direction):
+    vals = _check(a, b, p0, mu, nu, 0.0, 0.0, 0.0, direction)
+    out = []
+    for name, v in zip(("a", "b", "p0", "mu", "nu"), vals[:5], strict=True):
+        if v.ndim:
+            raise TypeError(f"{name} must be a scalar here (one contact at a time), "
+                            f"got an array of shape {v.shape}")
+        out.append(float(v))
+    return out + [float(vals[8])]
+
+
+def sliding_maxima(a, b, p0, mu, nu, direction=0.0) -> SlidingMaxima:
+    """The largest stresses under a sliding Hertz contact (normal + friction), one body.
+
+    Parameters
+    ----------
+    a, b : float
+        Semi-axes of the contact ellipse along x and y [m].
+    p0 : float
+        Peak Hertz pressure [Pa].
+    mu : float
+        Coefficient of friction: the traction is mu p along ``direction``.
+    nu : float
+        Poisson's ratio of the body.
+    direction : float, optional
+        Direction of the traction on this body, from the x axis [rad].
+
+    Returns
+    -------
+    SlidingMaxima
+
+    Notes
+    -----
+    A grid over the surface and one below it, each refined by Nelder-Mead; the larger
+    wins. For a circle and nu = 0.3 the von Mises maximum leaves the depth 0.48 a for the
+    surface at mu = 0.30 (:func:`surface_von_mises_mu`).
+
+    Examples
+    --------
+    >>> m = sliding_maxima(1e-3, 1e-3, 1e9, 0.0, 0.3)
+    >>> round(m.von_mises / 1e9, 4), round(m.z_von_mises / 1e-3, 4)
+    (0.62, 0.4809)
+    """
+    a, b, p0, mu, nu, direction = _scalar_inputs(a, b, p0, mu, nu, direction)
+    field = _Field(b / a, mu, nu, direction)
+    grids = _grids(field)
+    vm = _maximum(field, 0, grids)
+    tau = _maximum(field, 1, grids)
+    tens = _maximum(field, 2, grids, surface_only=True)
+    return SlidingMaxima(*(float(v) for v in (
+        vm[0] * p0, vm[1] * a, vm[2] * a, vm[3] * a, tau[0] * p0, tau[1] * a, tau[2] * a,
+        tau[3] * a, tens[0] * p0, tens[1] * a, tens[2] * a)))
+
+
+def surface_von_mises_mu(b_over_a, nu, direction=0.0):
+    """The coefficient of friction at which the von Mises maximum reaches the surface.
+
+    Below it the largest von Mises stress of the sliding contact lies below the surface
+    (the frictionless maximum, moved towards the leading edge), above it on the surface.
+    Found as the root of (surface maximum - subsurface local maximum) in mu.
+
+    Parameters
+    ----------
+    b_over_a : float
+        Axis ratio of the contact ellipse (b along y).
+    nu : float
+        Poisson's ratio.
+    direction : float, optional
+        Direction of the traction from the x axis [rad].
+
+    Returns
+    -------
+    float
+
+    Examples
+    --------
+    >>> round(surface_von_mises_mu(1.0, 0.3), 2)
+    0.3
+    """
+    _, ratio, _, _, nu, direction = _scalar_inputs(1.0, b_over_a, 1.0, 0.0, nu, direction)
+    memo = {"sub": None}
+
+    def gap(mu):
+        field = _Field(ratio, mu, nu, direction)
+        X, Y, Z = field.grid(True)
+        grids = {True: (X, Y, Z, field.values(X, Y, Z))}
+        surf = _maximum(field, 0, grids, surface_only=True)
+        if memo["sub"] is None:
+            X, Y, Z = field.grid(False)
+            vals = field.values(X, Y, Z)[0]
+            i = np.unravel_index(int(np.argmax(vals)), vals.shape)
+            memo["sub"] = (X[i], Y[i], Z[i])
+        sub = _refine(field, 0, memo["sub"], False)
+        memo["sub"] = sub[1:]
+        return surf[0] - sub[0]
+
+    # scan upwards from small mu (tracking the subsurface maximum) to a change of sign
+    lo, g_lo = 0.02, gap(0.02)
+    if g_lo >= 0:
+        raise ValueError("the von Mises maximum is on the surface already at mu = 0.02")
+    for hi in np.arange(0.1, 1.01, 0.1):
+        if gap(hi) >= 0:
+            memo["sub"] = None
+            gap(lo)
+            return optimize.brentq(gap, lo, hi, xtol=1e-10)
+        lo = hi
+    raise ValueError("the von Mises maximum stays below the surface up to mu = 1")
