@@ -39,8 +39,9 @@ real axis), so the trapezoid rule in v converges like exp(-2 pi^2 / h); h <= 0.4
 range chosen from the scales l, z^2/T'(l) and a^2 give about 1e-15 relative.
 s(w) = z^2/l + (w - l) (x^2/(A_l A) + y^2/(B_l B)) is a sum of non-negative terms.
 
-On the surface z = 0 the terms with a factor z vanish (W's third derivatives stay finite
-outside the contact), and the field is V_x, V_y, V_z and J5, J6 alone. Check there:
+On the surface z = 0 the terms z W vanish (W's third derivatives stay finite outside the
+contact), but z J1 and z J3 in B_xxx, B_xxy tend to e1 and e2 outside the contact (z/s^(3/2)
+concentrates at w = l); inside (l = 0) they vanish. Check there:
 sxx = -pi (4 + nu) mu p0 x / (8 a) for a circle (Hamilton 1983; Johnson eq. 7.47),
 mu p0 pi (4 + nu)/8 at the trailing edge.
 
@@ -56,7 +57,7 @@ import numpy as np
 from scipy import optimize, special
 
 from ._stress import point_stress
-from ._validate import as_float_array
+from ._validate import as_float_array, index_text
 
 __all__ = ["SlidingMaxima", "partial_slip_stress", "sliding_maxima", "sliding_stress",
            "surface_von_mises_mu"]
@@ -128,7 +129,7 @@ def _sliding_along_x(a, b, nu, x, y, z):
     zv_xy = 2.0 * kappa * x * y * lam * zg / (A * B)
     zv_xz = 2.0 * kappa * x * z * zg / A
     # end terms of z W_xxx, z W_xxy: 2 kappa x^3 l^2 / (D A^3 T'), 2 kappa x^2 y l^2 / (D A^2 B T')
-    g = np.where(pos & (z > 0), 1.0 / (d_l * t_w_safe), 0.0)
+    g = np.where(pos, 1.0 / (d_l * t_w_safe), 0.0)
     e1 = 2.0 * kappa * x2 * x * lam * lam * g / (A * A * A)
     e2 = 2.0 * kappa * x2 * y * lam * lam * g / (A * A * B)
 
@@ -143,14 +144,14 @@ def _sliding_along_x(a, b, nu, x, y, z):
     v = low[:, None] + (high - low)[:, None] * u
     dw = np.exp(v)                                # w - l, and dw/dv
     w = lam[:, None] + dw
-    Aw, Bw = a2 + w, b2[:, None] + w
-    s = zeta2[:, None] + dw * (x2 / A)[:, None] / Aw + dw * (y2 / B)[:, None] / Bw
-    r_ab = 1.0 / np.sqrt(Aw * Bw)
+    a_w, b_w = a2 + w, b2[:, None] + w
+    s = zeta2[:, None] + dw * (x2 / A)[:, None] / a_w + dw * (y2 / B)[:, None] / b_w
+    r_ab = 1.0 / np.sqrt(a_w * b_w)
     rs = 1.0 / np.sqrt(s)
     weight = dw * h[:, None]
     weight[:, 0] *= 0.5
     weight[:, -1] *= 0.5
-    ia, iab = 1.0 / Aw, 1.0 / (Aw * Bw)
+    ia, iab = 1.0 / a_w, 1.0 / (a_w * b_w)
     k2 = weight * r_ab * rs                       # dw / (sqrt(AB s))
     k3 = k2 * rs * rs                             # dw / (sqrt(AB) s^(3/2))
     k5 = weight * r_ab * np.sqrt(w)
@@ -161,11 +162,13 @@ def _sliding_along_x(a, b, nu, x, y, z):
     j5 = kappa * x * np.sum(k5 * ia * ia, axis=1)
     j6 = kappa * y * np.sum(k5 * iab, axis=1)
 
-    # W_xxx = -J1 - 3 J2 + e1/z, B_xxx = -z J1 + 3 J5 - 3 z J2 (and the xxy pair)
+    # W_xxx = -J1 - 3 J2 + e1/z, B_xxx = -z J1 + 3 J5 - 3 z J2 (and the xxy pair). On the
+    # surface outside the contact z J1 and z J3 do not vanish: z / s^(3/2) concentrates at
+    # w = l, and z J1 -> e1, z J3 -> e2 (so that z W_xxx, z W_xxy -> 0 there)
     zw_xxx = np.where(z > 0, -z * j1 - 3.0 * z * j2 + e1, 0.0)
     zw_xxy = np.where(z > 0, -z * j3 - z * j4 + e2, 0.0)
-    b_xxx = 3.0 * j5 - np.where(z > 0, z * j1 + 3.0 * z * j2, 0.0)
-    b_xxy = j6 - np.where(z > 0, z * j3 + z * j4, 0.0)
+    b_xxx = 3.0 * j5 - np.where(z > 0, z * j1 + 3.0 * z * j2, e1)
+    b_xxy = j6 - np.where(z > 0, z * j3 + z * j4, e2)
 
     f = 1.0 / (2.0 * np.pi)
     sxx = f * (2.0 * (1.0 + nu) * v_x - zw_xxx + 2.0 * nu * b_xxx)
@@ -212,9 +215,8 @@ def _check(a, b, p0, mu, nu, x, y, z, direction):
         good = ok(arr)
         if not np.all(good):
             i = int(np.argmin(np.asarray(good).reshape(-1)))
-            where = f" at index {np.unravel_index(i, arr.shape)}" if arr.ndim else ""
             raise ValueError(f"{name} must be {allowed}, got "
-                             f"{arr.reshape(-1)[i].item()!r}{where}")
+                             f"{arr.reshape(-1)[i].item()!r}{index_text(arr.shape, i)}")
     return arrs
 
 
@@ -313,9 +315,8 @@ def partial_slip_stress(a, b, p0, mu, nu, x, y, z, stick_ratio, direction=0.0):
     ok = (ratio >= 0) & (ratio <= 1)
     if not np.all(ok):
         i = int(np.argmin(ok.reshape(-1)))
-        where = f" at index {np.unravel_index(i, ratio.shape)}" if ratio.ndim else ""
         raise ValueError(f"stick_ratio must be c/a in [0, 1], got "
-                         f"{ratio.reshape(-1)[i].item()!r}{where}")
+                         f"{ratio.reshape(-1)[i].item()!r}{index_text(ratio.shape, i)}")
     full = sliding_stress(a, b, p0, mu, nu, x, y, z, direction)
     has_stick = ratio > 0
     if not np.any(has_stick):
@@ -455,17 +456,17 @@ def _maximum(field, which, grids, surface_only=False):
     """The global maximum (value, x, y, z) over the surface (its edge included) and below."""
     cands = [_edge_maximum(field, which)]
     for surface in ((True,) if surface_only else (True, False)):
-        X, Y, Z, vals = grids[surface]
+        gx, gy, gz, vals = grids[surface]
         i = np.unravel_index(int(np.argmax(vals[which])), vals[which].shape)
-        cands.append(_refine(field, which, (X[i], Y[i], Z[i]), surface))
+        cands.append(_refine(field, which, (gx[i], gy[i], gz[i]), surface))
     return max(cands, key=lambda r: r[0])
 
 
 def _grids(field):
     out = {}
     for surface in (True, False):
-        X, Y, Z = field.grid(surface)
-        out[surface] = (X, Y, Z, field.values(X, Y, Z))
+        gx, gy, gz = field.grid(surface)
+        out[surface] = (gx, gy, gz, field.values(gx, gy, gz))
     return out
 
 
@@ -553,14 +554,14 @@ def surface_von_mises_mu(b_over_a, nu, direction=0.0):
 
     def gap(mu):
         field = _Field(ratio, mu, nu, direction)
-        X, Y, Z = field.grid(True)
-        grids = {True: (X, Y, Z, field.values(X, Y, Z))}
+        gx, gy, gz = field.grid(True)
+        grids = {True: (gx, gy, gz, field.values(gx, gy, gz))}
         surf = _maximum(field, 0, grids, surface_only=True)
         if memo["sub"] is None:
-            X, Y, Z = field.grid(False)
-            vals = field.values(X, Y, Z)[0]
+            gx, gy, gz = field.grid(False)
+            vals = field.values(gx, gy, gz)[0]
             i = np.unravel_index(int(np.argmax(vals)), vals.shape)
-            memo["sub"] = (X[i], Y[i], Z[i])
+            memo["sub"] = (gx[i], gy[i], gz[i])
         sub = _refine(field, 0, memo["sub"], False)
         memo["sub"] = sub[1:]
         return surf[0] - sub[0]

@@ -32,29 +32,28 @@ recomputing entries at dps = 40, tol = 1e-22 (tools/friction_reference.py --chec
 """
 
 import mpmath as mp
-
 from reference_stress import _ts
 
 __all__ = ["friction_ref12", "friction_ref"]
 
 
-def _kernel(X, Y, z, R):
+def _kernel(ox, oy, z, R):
     """[A..., B...] of Cerruti's six components (order sxx, syy, szz, syz, sxz, sxy)."""
     tp = 2 * mp.pi
-    R2, R3 = R * R, R * R * R
-    Rz = R + z
-    Rz2 = Rz * Rz
-    X2, Y2 = X * X, Y * Y
-    c3 = -3 / (tp * R3 * R2)
-    a_xx = c3 * X * X2
-    a_yy = c3 * X * Y2
-    a_zz = c3 * X * z * z
-    a_yz = c3 * X * Y * z
-    a_xz = c3 * X2 * z
-    a_xy = c3 * Y * X2
-    b_xx = X / (tp * R3 * Rz2) * (R2 - Y2 - 2 * R * Y2 / Rz)
-    b_yy = X / (tp * R3 * Rz2) * (3 * R2 - X2 - 2 * R * X2 / Rz)
-    b_xy = Y / (tp * R3 * Rz2) * (-R2 + X2 + 2 * R * X2 / Rz)
+    R2, r3 = R * R, R * R * R
+    rz = R + z
+    rz2 = rz * rz
+    ox2, oy2 = ox * ox, oy * oy
+    c3 = -3 / (tp * r3 * R2)
+    a_xx = c3 * ox * ox2
+    a_yy = c3 * ox * oy2
+    a_zz = c3 * ox * z * z
+    a_yz = c3 * ox * oy * z
+    a_xz = c3 * ox2 * z
+    a_xy = c3 * oy * ox2
+    b_xx = ox / (tp * r3 * rz2) * (R2 - oy2 - 2 * R * oy2 / rz)
+    b_yy = ox / (tp * r3 * rz2) * (3 * R2 - ox2 - 2 * R * ox2 / rz)
+    b_xy = oy / (tp * r3 * rz2) * (-R2 + ox2 + 2 * R * ox2 / rz)
     zero = mp.mpf(0)
     return [a_xx, a_yy, a_zz, a_yz, a_xz, a_xy, b_xx, b_yy, zero, zero, zero, b_xy]
 
