@@ -51,6 +51,7 @@ Checked against an mpmath quadrature of Cerruti's solution (tests/reference_fric
 
 from __future__ import annotations
 
+import functools
 from dataclasses import dataclass
 
 import numpy as np
@@ -557,6 +558,11 @@ def surface_von_mises_mu(b_over_a, nu, direction=0.0):
     0.3
     """
     _, ratio, _, _, nu, direction = _scalar_inputs(1.0, b_over_a, 1.0, 0.0, nu, direction)
+    return _surface_von_mises_mu(ratio, nu, direction)
+
+
+@functools.lru_cache(maxsize=64)
+def _surface_von_mises_mu(ratio, nu, direction):
     memo = {"sub": None}
 
     def gap(mu):
