@@ -370,16 +370,20 @@ class _Field:
     only the symmetry plane through the traction (y = 0 for traction along x, x = 0 along
     y) is searched."""
 
-    def __init__(self, ratio, mu, nu, direction):
+    def __init__(self, ratio, mu, nu, direction, stick_ratio=0.0):
         self.ratio, self.mu, self.nu, self.direction = ratio, mu, nu, direction
+        self.stick_ratio = stick_ratio
         c, s = np.cos(direction), np.sin(direction)
         self.plane = "y" if s == 0 else ("x" if c == 0 or abs(c) < 1e-300 else None)
 
     def stress(self, x, y, z):
         x, y, z = np.broadcast_arrays(*(np.asarray(v, dtype=float) for v in (x, y, z)))
-        return (point_stress(1.0, self.ratio, 1.0, self.nu, x, y, z)
-                + sliding_stress(1.0, self.ratio, 1.0, self.mu, self.nu, x, y, z,
-                                 self.direction))
+        normal = point_stress(1.0, self.ratio, 1.0, self.nu, x, y, z)
+        if self.stick_ratio > 0:
+            return normal + partial_slip_stress(1.0, self.ratio, 1.0, self.mu, self.nu, x, y,
+                                                z, self.stick_ratio, self.direction)
+        return normal + sliding_stress(1.0, self.ratio, 1.0, self.mu, self.nu, x, y, z,
+                                       self.direction)
 
     def values(self, x, y, z):
         """von Mises, (s1 - s3)/2, s1."""
@@ -482,8 +486,11 @@ def _scalar_inputs(a, b, p0, mu, nu, direction):
     return out + [float(vals[8])]
 
 
-def sliding_maxima(a, b, p0, mu, nu, direction=0.0) -> SlidingMaxima:
+def sliding_maxima(a, b, p0, mu, nu, direction=0.0, stick_ratio=0.0) -> SlidingMaxima:
     """The largest stresses under a sliding Hertz contact (normal + friction), one body.
+
+    With ``stick_ratio`` > 0 the tangential traction is Cattaneo-Mindlin's partial-slip
+    traction instead (:func:`partial_slip_stress`).
 
     Parameters
     ----------
@@ -497,6 +504,8 @@ def sliding_maxima(a, b, p0, mu, nu, direction=0.0) -> SlidingMaxima:
         Poisson's ratio of the body.
     direction : float, optional
         Direction of the traction on this body, from the x axis [rad].
+    stick_ratio : float, optional
+        c/a of the stick ellipse in [0, 1]; 0 (the default) is full sliding.
 
     Returns
     -------
@@ -520,7 +529,10 @@ def sliding_maxima(a, b, p0, mu, nu, direction=0.0) -> SlidingMaxima:
     (0.62, 0.4809)
     """
     a, b, p0, mu, nu, direction = _scalar_inputs(a, b, p0, mu, nu, direction)
-    field = _Field(b / a, mu, nu, direction)
+    ratio = as_float_array(stick_ratio, "stick_ratio")
+    if ratio.ndim or not 0 <= ratio <= 1:
+        raise ValueError(f"stick_ratio must be one c/a in [0, 1], got {stick_ratio!r}")
+    field = _Field(b / a, mu, nu, direction, float(ratio))
     grids = _grids(field)
     vm = _maximum(field, 0, grids)
     tau = _maximum(field, 1, grids)

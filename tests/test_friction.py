@@ -253,6 +253,25 @@ def test_maxima_without_friction_and_trailing_edge_tension():
         assert abs(m.x_tensile + 2e-3) < 1e-12 and abs(m.y_tensile) < 1e-12
 
 
+def test_partial_slip_maxima():
+    # no tangential force (stick ratio 1): the frictionless maxima
+    m0 = sliding_maxima(1.0, 0.5, 1.0, 0.0, 0.3)
+    m1 = sliding_maxima(1.0, 0.5, 1.0, 0.4, 0.3, stick_ratio=1.0)
+    assert abs(m1.von_mises - m0.von_mises) < 1e-14 and abs(m1.tensile - m0.tensile) < 1e-14
+    # between no slip and full sliding, at the position found: the partial-slip field's value
+    m = sliding_maxima(1.0, 0.5, 1.0, 0.4, 0.3, stick_ratio=0.7)
+    ms = sliding_maxima(1.0, 0.5, 1.0, 0.4, 0.3)
+    assert m0.von_mises < m.von_mises < ms.von_mises
+    s = point_stress(1.0, 0.5, 1.0, 0.3, m.x_von_mises, m.y_von_mises, m.z_von_mises) + \
+        partial_slip_stress(1.0, 0.5, 1.0, 0.4, 0.3, m.x_von_mises, m.y_von_mises,
+                            m.z_von_mises, 0.7)
+    e = np.linalg.eigvalsh(s)
+    vm = np.sqrt(((e[0] - e[1]) ** 2 + (e[1] - e[2]) ** 2 + (e[2] - e[0]) ** 2) / 2)
+    assert abs(vm - m.von_mises) < 1e-15
+    with pytest.raises(ValueError, match="stick_ratio must be one c/a in"):
+        sliding_maxima(1.0, 0.5, 1.0, 0.4, 0.3, stick_ratio=-0.1)
+
+
 def test_von_mises_maximum_reaches_the_surface_near_mu_03():
     # Hamilton 1983: for a sliding sphere the largest von Mises stress is on the surface for
     # mu above about 0.3 (nu = 0.3); here 0.3047
