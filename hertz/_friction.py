@@ -389,11 +389,16 @@ class _Field:
         self.ratio, self.mu, self.nu, self.direction = ratio, mu, nu, direction
         self.stick_ratio = stick_ratio
         c, s = np.cos(direction), np.sin(direction)
-        self.plane = "y" if s == 0 else ("x" if c == 0 or abs(c) < 1e-300 else None)
+        # (cos(pi/2) and sin(pi) are 6e-17 and 1.2e-16 in double precision)
+        self.plane = "y" if abs(s) < 1e-12 else ("x" if abs(c) < 1e-12 else None)
 
     def stress(self, x, y, z):
         x, y, z = np.broadcast_arrays(*(np.asarray(v, dtype=float) for v in (x, y, z)))
-        normal = point_stress(1.0, self.ratio, 1.0, self.nu, x, y, z)
+        if self.ratio <= 1:
+            normal = point_stress(1.0, self.ratio, 1.0, self.nu, x, y, z)
+        else:   # the normal kernel wants the major axis along x
+            turned = point_stress(self.ratio, 1.0, 1.0, self.nu, y, x, z)
+            normal = turned[..., [1, 0, 2], :][..., [1, 0, 2]]
         if self.stick_ratio > 0:
             return normal + partial_slip_stress(1.0, self.ratio, 1.0, self.mu, self.nu, x, y,
                                                 z, self.stick_ratio, self.direction)

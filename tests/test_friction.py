@@ -284,6 +284,17 @@ def test_partial_slip_maxima():
         sliding_maxima(1.0, 0.5, 1.0, 0.4, 0.3, stick_ratio=-0.1)
 
 
+def test_maxima_along_the_minor_axis_are_those_of_the_turned_ellipse():
+    # traction along y on (a, b) searched in the plane x = 0; along x on (b, a) in y = 0
+    m = sliding_maxima(1.0, 0.5, 1.0, 0.3, 0.3, direction=np.pi / 2)
+    t = sliding_maxima(0.5, 1.0, 1.0, 0.3, 0.3)
+    for name in ("von_mises", "tau_max"):
+        assert abs(getattr(m, name) - getattr(t, name)) < 1e-14
+        assert abs(getattr(m, f"y_{name}") - getattr(t, f"x_{name}")) < 1e-6
+        assert abs(getattr(m, f"z_{name}") - getattr(t, f"z_{name}")) < 1e-6
+    assert abs(m.tensile - t.tensile) < 1e-14 and abs(m.y_tensile + 0.5) < 1e-12
+
+
 def test_von_mises_maximum_reaches_the_surface_near_mu_03():
     # Hamilton 1983: for a sliding sphere the largest von Mises stress is on the surface for
     # mu above about 0.3 (nu = 0.3); here 0.3047
