@@ -50,8 +50,9 @@ the mid-annulus ring, largest (mean) angle between slip and force: nu = 0.3, cir
 The no-slip stiffness and the partial-slip state are one pass of a compiled kernel
 (hertz/_tangential_kernel.c: the formulas above, with its own vectorised cos 2t, sin 2t
 (within 2 ulp) and cube root (within 1 ulp)) over the contacts.  dask arrays:
-``tangential_stiffness`` and ``tangential`` stay lazy (a bad value is reported, with its index, when the block holding it is computed); the
-other functions compute their inputs once to check them.
+``tangential_stiffness`` and ``tangential`` stay lazy (a bad value is reported, with
+its index, when the block holding it is computed); the other functions compute their
+inputs once to check them.
 
 Masing's rule (constant P; Mindlin & Deresiewicz 1953): a branch from a reversal
 point (Q_r, delta_r) is delta = delta_r + 2 f((Q - Q_r)/2) with f the (odd) virgin

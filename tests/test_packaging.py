@@ -86,6 +86,11 @@ def test_the_wheel_carries_the_geometry_and_no_c_sources(tmp_path):
     assert (tmp_path / "fem_validation" / "meshes" / "blocks.geo").is_file()
     assert (tmp_path / "hertz" / "__init__.py").is_file()
     assert sorted(p.name for p in (tmp_path / "hertz").glob("*.[ch]")) == []
+    # every Python module of the source tree, subpackages included (readers/ and decks/
+    # were once left out of the wheel, so `grade` and `deck` failed from an install)
+    for package in ("hertz", "fem_validation"):
+        for module in (ROOT / package).rglob("*.py"):
+            assert (tmp_path / module.relative_to(ROOT)).is_file(), module
 
 
 class FakeCompiler:
