@@ -34,6 +34,7 @@ differed by at most 7.7e-27 (absolute, per unit mu p0): far below the doubles' r
 
 import mpmath as mp
 from reference_stress import _ts
+from reference_stress import chord as _chord
 
 __all__ = ["friction_ref12", "friction_ref"]
 
@@ -57,28 +58,6 @@ def _kernel(ox, oy, z, R):
     b_xy = oy / (tp * r3 * rz2) * (-R2 + ox2 + 2 * R * ox2 / rz)
     zero = mp.mpf(0)
     return [a_xx, a_yy, a_zz, a_yz, a_xz, a_xy, b_xx, b_yy, zero, zero, zero, b_xy]
-
-
-def _chord(a, b, x, y, c, s):
-    """(qa, r1, r2): the ray (x, y) + r (c, s) is inside the ellipse for r1 < r < r2, and
-    1 - X^2/a^2 - Y^2/b^2 = qa (r2 - r)(r - r1) there; None if the ray misses it."""
-    qa = (c / a) ** 2 + (s / b) ** 2
-    qb = x * c / a ** 2 + y * s / b ** 2
-    qc = (x / a) ** 2 + (y / b) ** 2 - 1
-    disc = qb * qb - qa * qc
-    if disc <= 0:
-        return None
-    sq = mp.sqrt(disc)
-    if qb >= 0:
-        ra = -(qb + sq) / qa
-        rb = qc / (qa * ra)
-    else:
-        rb = (sq - qb) / qa
-        ra = qc / (qa * rb) if rb != 0 else mp.mpf(0)
-    r1, r2 = min(ra, rb), max(ra, rb)
-    if r2 <= 0:
-        return None
-    return qa, r1, r2
 
 
 def _radial(a, b, x, y, z, theta, tol):

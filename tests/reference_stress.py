@@ -184,10 +184,9 @@ def _cc(f, n_out, tol, nmin=8, nmax=2048):
 
 
 # ---------------------------------------------------------------- point contact
-def _radial(a, b, x, y, z, theta, tol):
-    """Radial integrals j1..j5 (see _angular) along the ray from (x, y) in direction theta,
-    and cos, sin of theta; None if the ray misses the ellipse."""
-    c, s = mp.cos(theta), mp.sin(theta)
+def chord(a, b, x, y, c, s):
+    """(qa, r1, r2): the ray (x, y) + r (c, s) is inside the ellipse for r1 < r < r2, and
+    1 - X^2/a^2 - Y^2/b^2 = qa (r2 - r)(r - r1) there; None if the ray misses it."""
     qa = (c / a) ** 2 + (s / b) ** 2
     qb = x * c / a ** 2 + y * s / b ** 2
     qc = (x / a) ** 2 + (y / b) ** 2 - 1
@@ -205,6 +204,18 @@ def _radial(a, b, x, y, z, theta, tol):
     r1, r2 = min(ra, rb), max(ra, rb)
     if r2 <= 0:
         return None
+    return qa, r1, r2
+
+
+def _radial(a, b, x, y, z, theta, tol):
+    """Radial integrals j1..j5 (see _angular) along the ray from (x, y) in direction theta,
+    and cos, sin of theta; None if the ray misses the ellipse."""
+    c, s = mp.cos(theta), mp.sin(theta)
+    ch = chord(a, b, x, y, c, s)
+    if ch is None:
+        return None
+    qa, r1, r2 = ch
+    qc = (x / a) ** 2 + (y / b) ** 2 - 1
     inside = r1 <= 0            # the chord starts at the field point
 
     def cosmap(lo, hi, v0):
