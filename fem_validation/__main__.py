@@ -151,6 +151,9 @@ def _conflicts(args) -> None:
         raise UsageError("--a-over-r applies to --curved only")
     if given["--levels"] and not (args.curved or args.study):
         raise UsageError("--levels applies to --study and --curved only (use --level)")
+    if given["--amg-rebuild"] and not args.amg_rebuild > 0:  # NaN fails too
+        raise UsageError(f"--amg-rebuild must be a fraction > 0 (inf: build once), got "
+                         f"{args.amg_rebuild!r}")
 
 
 def _deck(argv: list[str]) -> int:

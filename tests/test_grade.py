@@ -564,6 +564,8 @@ def test_cli_force_approach(ball, tmp_path):
     (("--curved", "--level", "5"), "levels must be in"),
     (("--nonsense",), "unrecognized arguments"),
     (("--alpha", "three"), "invalid float value"),
+    (("--alpha", "2", "--level", "0", "--amg-rebuild", "-1"), "--amg-rebuild must be"),
+    (("--alpha", "2", "--level", "0", "--amg-rebuild", "nan"), "--amg-rebuild must be"),
 ])
 def test_cli_hostile_arguments_one_line(tmp_path, args, match):
     done = run(*args, "--out", tmp_path / "o")
