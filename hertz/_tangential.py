@@ -333,6 +333,9 @@ class Tangential:
     _a: float | np.ndarray
     _b: float | np.ndarray
     _p0: float | np.ndarray
+    # (nu1, nu2) of the bodies; None in a result rebuilt around pandas/xarray/pint/dask
+    # fields, which carries no stress field
+    _nu: tuple | None = None
 
     def traction(self, x, y):
         """Shear traction along the force at (x, y) in the ellipse frame [Pa].
@@ -352,6 +355,138 @@ class Tangential:
             full = np.sqrt(np.maximum(1.0 - r2, 0.0))
             stick = np.where(r2 < s * s, s * np.sqrt(np.maximum(1.0 - r2 / (s * s), 0.0)), 0.0)
             return _out(self.mu * self._p0 * (full - stick))
+
+    # The traction on each body.  Q is the force that pushes body 1 along ``direction``
+    # relative to body 2 (``tangential_compliance``: distant points of body 1 move by
+    # C @ Q relative to body 2's).  A surface traction moves a half-space's surface
+    # along itself relative to its distant points (Cerruti), so the stuck interface
+    # carries Q that way only if body 2's surface is dragged along ``direction`` and
+    # body 1's held back: the traction on body 2 is along ``direction``, on body 1
+    # along direction + pi.
+    def _poisson(self, body, what):
+        from ._stress import poisson_of
+
+        if self._nu is None:
+            raise TypeError(f"Tangential.{what} needs numpy fields: this result was built "
+                            "around pandas, xarray, pint or dask values; call "
+                            "Contact.tangential on a contact of plain numpy values")
+        return poisson_of(self._nu, body)
+
+    def _stick_ratio(self):
+        """c = stick_a / a = (1 - Q/(mu P))^(1/3) in [0, 1] (0 when sliding)."""
+        return np.clip(np.asarray(self.stick_a, dtype=np.float64) / self._a, 0.0, 1.0)
+
+    def stress(self, x, y, z, body=1):
+        """Cauchy stress tensor [Pa] in body 1 or 2 under the normal and tangential load.
+
+        The frictionless Hertz field (:meth:`hertz.Contact.stress`) plus the field of the
+        Cattaneo-Mindlin traction (:meth:`traction`): mu p over the contact ellipse minus
+        c mu p0 sqrt(1 - r^2/c^2) over the stick ellipse, c = stick_a / a (Mindlin 1949),
+        integrated through Cerruti's solution (``hertz._friction.partial_slip_stress``),
+        with the body's own Poisson's ratio.  At Q = mu P (c = 0) it is the field of
+        the sliding traction mu p.
+
+        The force Q pushes body 1 along ``direction`` relative to body 2 (the sense of
+        :func:`hertz.tangential_compliance` and of ``displacement``), so the traction
+        that body 1 exerts on body 2 is along ``direction`` and the one on body 1 the
+        opposite: on the surface inside the contact sigma_xz = -t cos(direction) in
+        body 2 and +t cos(direction) in body 1 (t = :meth:`traction`; z points into
+        the body, whose outward normal is -z).  Mindlin's uncoupled solution: the
+        pressure is Hertz's (exact for elastically similar bodies, see
+        ``dundurs_beta``).
+
+        Parameters
+        ----------
+        x, y, z : float or array_like
+            Ellipse frame [m]: x along the major axis a, y along the minor axis b,
+            z >= 0 the depth into the body.  They broadcast with each other and with
+            the result's shape.
+        body : {1, 2}
+            Which body.
+
+        Returns
+        -------
+        ndarray, shape (..., 3, 3)
+            The stress tensor [Pa], tension positive, rows and columns x, y, z.
+
+        Raises
+        ------
+        ValueError
+            A coordinate not finite, a negative depth, ``body`` not 1 or 2.
+        TypeError
+            A result built around pandas, xarray, pint or dask values.
+
+        Examples
+        --------
+        >>> import hertz
+        >>> ball = hertz.Body.sphere(0.01, E=210e9, nu=0.3)
+        >>> c = hertz.contact(ball, hertz.Body.plane(E=210e9, nu=0.3), load=100.0)
+        >>> t = c.tangential(force=15.0, mu=0.3)  # Q / (mu P) = 1/2, along x
+        >>> x = 0.9 * c.a  # in the slip annulus, on the surface
+        >>> s1, s2 = t.stress(x, 0.0, 0.0, body=1), t.stress(x, 0.0, 0.0, body=2)
+        >>> print(f"{s1[0, 2] / t.traction(x, 0.0):.12f} {s2[0, 2] / t.traction(x, 0.0):.12f}")
+        1.000000000000 -1.000000000000
+        """
+        from ._friction import partial_slip_stress
+        from ._stress import point_stress
+
+        nu = self._poisson(body, "stress")
+        normal = point_stress(self._a, self._b, self._p0, nu, x, y, z)
+        friction = partial_slip_stress(self._a, self._b, self._p0, self.mu, nu, x, y, z,
+                                       self._stick_ratio(), self.direction)
+        # body 1 carries the reversed traction: the field is linear in it (exactly the
+        # field of direction + pi, without cos/sin(pi)'s rounding)
+        return normal - friction if body == 1 else normal + friction
+
+    def maxima(self, body=1):
+        """The largest stresses in body 1 or 2 under the normal and tangential load.
+
+        :func:`hertz._friction.sliding_maxima` with the stick ratio c = stick_a / a of
+        this state and the body's Poisson's ratio: the frictionless Hertz field plus
+        that of the Cattaneo-Mindlin traction, on body 2 along ``direction`` and on
+        body 1 along direction + pi (see :meth:`stress`).  One contact at a time.
+
+        Parameters
+        ----------
+        body : {1, 2}
+            Which body.
+
+        Returns
+        -------
+        SlidingMaxima
+            The largest von Mises and principal shear stress [Pa] and where they are,
+            and the largest surface tension [Pa] and where it is (positions [m] in the
+            ellipse frame, z the depth).  The maxima of the two bodies differ by their
+            Poisson's ratios; their positions are mirrored through the z axis.
+
+        Raises
+        ------
+        TypeError
+            If the result holds more than one contact (an array field): loop over
+            them.  About 0.4 s each.
+        ValueError
+            ``body`` not 1 or 2.
+
+        Examples
+        --------
+        >>> import hertz
+        >>> ball = hertz.Body.sphere(0.01, E=210e9, nu=0.3)
+        >>> c = hertz.contact(ball, hertz.Body.plane(E=210e9, nu=0.3), load=100.0)
+        >>> m = c.tangential(force=30.0, mu=0.3).maxima(body=2)  # sliding, mu = 0.3
+        >>> print(f"{m.von_mises / c.p0:.3f} p0 at z = {m.z_von_mises / c.a:.3f} a")
+        0.660 p0 at z = 0.428 a
+        """
+        from ._friction import sliding_maxima
+
+        nu = self._poisson(body, "maxima")
+        shape = np.shape(self.stick_a)
+        if shape:
+            raise TypeError(f"Tangential.maxima takes one contact, this result holds an array "
+                            f"of shape {shape}; call it on the tangential state of each "
+                            "contact (scalar force, mu, direction and contact)")
+        direction = float(self.direction) + (math.pi if body == 1 else 0.0)
+        return sliding_maxima(self._a, self._b, self._p0, self.mu, nu, direction,
+                              float(self._stick_ratio()))
 
 
 def _broadcast(x, shape):
@@ -391,7 +526,7 @@ def partial_slip(contact, force, mu, direction=0.0) -> Tangential:
     fields = [_broadcast(x, shape) for x in fields]
     if not shape:
         fields[10] = bool(fields[10])
-    return Tangential(*fields)
+    return Tangential(*fields, (nu1, nu2))
 
 
 # ----------------------------------------------------------------------- fretting
