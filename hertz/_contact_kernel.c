@@ -68,27 +68,11 @@
 #include <string.h>
 
 #include "_contact_kernel.h"
+#include "_fastmath.h"
 
 #define PI 3.14159265358979323846
-#define ROUND 0x1.8p52 /* (x + ROUND) - ROUND rounds x to an integer, |x| < 2^51 */
 
 /* ---------------------------------------------------------- binary scaling */
-
-static inline double
-as_double(uint64_t bits)
-{
-    double d;
-    memcpy(&d, &bits, sizeof d);
-    return d;
-}
-
-static inline uint64_t
-as_bits(double d)
-{
-    uint64_t bits;
-    memcpy(&bits, &d, sizeof bits);
-    return bits;
-}
 
 /* 2^e for an integer-valued e in [-1022, 1023]: the bits of e + 1023 + 2^52,
  * shifted into the exponent field. */
@@ -106,15 +90,6 @@ scale2(double x, double e)
     e = e < -2044.0 ? -2044.0 : (e > 2046.0 ? 2046.0 : e);
     double h = (e * 0.5 + ROUND) - ROUND;
     return x * pow2(h) * pow2(e - h);
-}
-
-/* x = m 2^e with m in [1, 2), for a normal x > 0 (bits only). */
-static inline double
-split_normal(double x, double *e)
-{
-    uint64_t bits = as_bits(x);
-    *e = as_double((bits >> 52) | 0x4330000000000000ull) - (0x1p52 + 1023.0);
-    return as_double((bits & 0x000FFFFFFFFFFFFFull) | 0x3FF0000000000000ull);
 }
 
 /* The same for any finite x > 0, subnormals included. */
@@ -242,19 +217,8 @@ dd_add(double ah, double al, double bh, double bl, double *lo)
 static inline void
 sin2_cos2(double x, double *sin2_x, double *cos2_x)
 {
-    const double P1 = 0x1.921fb54400000p+0, P2 = 0x1.0b4611a600000p-34,
-                 P3 = 0x1.3198a2e037073p-69, TWO_OVER_PI = 0x1.45f306dc9c883p-1;
-    double k = (x * TWO_OVER_PI + ROUND) - ROUND;
-    double r = ((x - k * P1) - k * P2) - k * P3, z = r * r;
-    double sp = -1.0 / 355687428096000.0;        /* -1/17! */
-    sp = 1.0 / 1307674368000.0 + z * sp;         /* 1/15! */
-    sp = -1.0 / 6227020800.0 + z * sp;           /* -1/13! */
-    sp = 1.0 / 39916800.0 + z * sp;              /* 1/11! */
-    sp = -1.0 / 362880.0 + z * sp;               /* -1/9! */
-    sp = 1.0 / 5040.0 + z * sp;                  /* 1/7! */
-    sp = -1.0 / 120.0 + z * sp;                  /* -1/5! */
-    sp = 1.0 / 6.0 + z * sp;                     /* 1/3! */
-    double sr = r - r * z * sp;
+    double k, r = reduce_half_pi(x, &k), z = r * r;
+    double sr = sin_reduced(r, z);
     double s2 = sr * sr, c2 = 1.0 - s2;
     /* k odd: sin^2 x = cos^2 r */
     double odd = k - 2.0 * ((k * 0.5 + ROUND) - ROUND);

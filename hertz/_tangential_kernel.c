@@ -34,26 +34,10 @@
 #include <string.h>
 
 #include "_tangential_kernel.h"
+#include "_fastmath.h"
 
 #define PI 3.141592653589793
-#define ROUND 0x1.8p52   /* (x + ROUND) - ROUND rounds x to an integer, |x| < 2^51 */
 #define FAST_ANGLE 1e5   /* |2t| up to which sin_cos reduces exactly */
-
-static inline uint64_t
-bits_of(double x)
-{
-    uint64_t b;
-    memcpy(&b, &x, sizeof b);
-    return b;
-}
-
-static inline double
-double_of(uint64_t b)
-{
-    double x;
-    memcpy(&x, &b, sizeof x);
-    return x;
-}
 
 /* sin x and cos x for |x| <= FAST_ANGLE: x = k pi/2 + r, pi/2 in three parts
  * (Cody-Waite; the first two of 33 significant bits, so k P1 and k P2 are
@@ -62,19 +46,8 @@ double_of(uint64_t b)
 static inline void
 sin_cos(double x, double *sin_x, double *cos_x)
 {
-    const double P1 = 0x1.921fb54400000p+0, P2 = 0x1.0b4611a600000p-34,
-                 P3 = 0x1.3198a2e037073p-69, TWO_OVER_PI = 0x1.45f306dc9c883p-1;
-    double k = (x * TWO_OVER_PI + ROUND) - ROUND;
-    double r = ((x - k * P1) - k * P2) - k * P3, z = r * r;
-    double sp = 1.0 / 355687428096000.0;  /* 1/17! */
-    sp = -1.0 / 1307674368000.0 + z * sp; /* -1/15! */
-    sp = 1.0 / 6227020800.0 + z * sp;     /* 1/13! */
-    sp = -1.0 / 39916800.0 + z * sp;      /* -1/11! */
-    sp = 1.0 / 362880.0 + z * sp;         /* 1/9! */
-    sp = -1.0 / 5040.0 + z * sp;          /* -1/7! */
-    sp = 1.0 / 120.0 + z * sp;            /* 1/5! */
-    sp = -1.0 / 6.0 + z * sp;             /* -1/3! */
-    double sr = r + r * z * sp;
+    double k, r = reduce_half_pi(x, &k), z = r * r;
+    double sr = sin_reduced(r, z);
     double cp = 1.0 / 6402373705728000.0; /* 1/18! */
     cp = -1.0 / 20922789888000.0 + z * cp; /* -1/16! */
     cp = 1.0 / 87178291200.0 + z * cp;     /* 1/14! */
@@ -101,9 +74,7 @@ cube_root_unit(double u)
     const double C0 = 1.1447129219983214, C1 = 0.2542825412449245,
                  C2 = -0.05643544389415758, C3 = 0.022471745665671682,
                  C4 = -0.010274592492471802;
-    uint64_t b = bits_of(u);
-    double e = double_of((b >> 52) | 0x4330000000000000ull) - (0x1p52 + 1023.0);
-    double m = double_of((b & 0x000FFFFFFFFFFFFFull) | 0x3FF0000000000000ull);
+    double e, m = split_normal(u > 0.0 ? u : 1.0, &e);
     double p = (e * (1.0 / 3.0) + ROUND) - ROUND, j = e - 3.0 * p;
     p = j < 0.0 ? p - 1.0 : p;
     j = j < 0.0 ? j + 3.0 : j;
@@ -112,7 +83,7 @@ cube_root_unit(double u)
                * (j >= 2.0 ? 1.5874010519681994 : (j >= 1.0 ? 1.2599210498948732 : 1.0));
     c = c + (x - c * c * c) / (3.0 * (c * c));
     c = c + (x - c * c * c) / (3.0 * (c * c));
-    double scale = double_of(bits_of(p + (0x1p52 + 1023.0)) << 52); /* 2^p */
+    double scale = as_double(as_bits(p + (0x1p52 + 1023.0)) << 52); /* 2^p */
     return u > 0.0 ? c * scale : 0.0;
 }
 
