@@ -20,7 +20,7 @@ from __future__ import annotations
 import importlib.resources
 import logging
 import time
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 from pathlib import Path
 
 import numpy as np
@@ -341,3 +341,23 @@ def _body(coords: np.ndarray, numbering: _Numbering, tets: np.ndarray) -> MeshTe
     p = coords[numbering.tags]
     t = positively_oriented(p, numbering(tets))
     return MeshTet(np.ascontiguousarray(p.T), np.ascontiguousarray(t.T))
+
+
+def mirrored(mesh: BlockMesh) -> BlockMesh:
+    """The same blocks with body 2 replaced by body 1's mirror image in z = 0.
+
+    Node i of body 2 is then the mirror of node i of body 1, so that the
+    contact pairs are (i, i).  With elastically similar bodies this makes the
+    discrete model symmetric under the mirror, as the half-spaces are: a
+    tangential traction then changes the gap nowhere (Mindlin's uncoupled
+    problem holds for the discrete model too, not only in the limit).
+    """
+    m1 = mesh.bodies[0]
+    p2 = m1.p * np.array([[1.0], [1.0], [-1.0]])
+    t2 = m1.t[[0, 2, 1, 3]]  # the mirror turns every tetrahedron inside out
+    body2 = MeshTet(np.ascontiguousarray(p2), np.ascontiguousarray(t2))
+    pairs = np.column_stack([mesh.pairs[:, 0], mesh.pairs[:, 0]])
+    sym = {name: (s[0], s[0]) if s is not None else None
+           for name, s in (("sym_x", mesh.sym_x), ("sym_y", mesh.sym_y))}
+    axis = (mesh.axis[0], mesh.axis[0])
+    return replace(mesh, bodies=(m1, body2), bottom=mesh.top, pairs=pairs, axis=axis, **sym)
