@@ -258,14 +258,14 @@ def masing_force(c, mu: float, direction: float, displacement, reversal_forces=(
     return 0.5 * (lo + hi)
 
 
-def stick_ellipse(XY: np.ndarray, pressure: np.ndarray, shear: np.ndarray, mu: float,
+def stick_ellipse(ellipse_xy: np.ndarray, pressure: np.ndarray, shear: np.ndarray, mu: float,
                   cross_term: bool) -> dict:
     """Stick-zone semi-axes from a fit of (mu p - q)^2 = A0 + A1 X^2 + A2 Y^2 (+ A12 X Y).
 
     Parameters
     ----------
-    XY : ndarray, shape (n, 2)
-        Node positions in the ellipse frame [m].
+    ellipse_xy : ndarray, shape (n, 2)
+        Node positions (X, Y) in the ellipse frame [m].
     pressure, shear : ndarray, shape (n,)
         p and the shear along the load q [Pa].
     mu : float
@@ -281,7 +281,7 @@ def stick_ellipse(XY: np.ndarray, pressure: np.ndarray, shear: np.ndarray, mu: f
     """
     g = mu * pressure - shear
     sel = (pressure > 0) & (g > FIT_THRESHOLD * g.max())
-    x, y = XY[sel, 0], XY[sel, 1]
+    x, y = ellipse_xy[sel, 0], ellipse_xy[sel, 1]
     cols = [np.ones(sel.sum()), -x * x, -y * y] + ([-x * y] if cross_term else [])
     nan = {"stick_a": math.nan, "stick_b": math.nan, "angle_deg": math.nan,
            "fit_nodes": int(sel.sum())}
@@ -415,7 +415,7 @@ def grade_tangential(result: TangentialResult, scene,
     along = result.direction - theta  # the load's angle in the ellipse frame
     xy = result.xy
     ct, st = math.cos(theta), math.sin(theta)
-    XY = np.column_stack([xy[:, 0] * ct + xy[:, 1] * st, -xy[:, 0] * st + xy[:, 1] * ct])
+    ellipse_xy = np.column_stack([xy[:, 0] * ct + xy[:, 1] * st, -xy[:, 0] * st + xy[:, 1] * ct])
     tri = _face_triangles(result, xy)
     area = lumped_area(xy, tri)
     _sanity(result, c, xy, area, where)
@@ -424,7 +424,7 @@ def grade_tangential(result: TangentialResult, scene,
     notes = []
 
     # --- the path: ramp, unloading, reloading -------------------------------------------
-    d, Q = result.displacement, result.force
+    d, path_q = result.displacement, result.force
     k = len(d)
     rev = result.reversals
     i1 = rev[0] if rev else k - 1
@@ -435,7 +435,7 @@ def grade_tangential(result: TangentialResult, scene,
     ramp = np.arange(1, i1 + 1)
     ramp = ramp[d[ramp] > 0]
     q_ref[ramp] = masing_force(c, mu, along, d[ramp])
-    ramp_err = (Q[ramp] - q_ref[ramp]) / q_ref[ramp]
+    ramp_err = (path_q[ramp] - q_ref[ramp]) / q_ref[ramp]
     force_err = float(_worst(list(ramp_err))) if ramp.size else math.nan
     curve_d, curve_q = [np.linspace(0.0, d[i1], 60)], []
     curve_q.append(masing_force(c, mu, along, curve_d[0]))
@@ -459,18 +459,18 @@ def grade_tangential(result: TangentialResult, scene,
             curve_d.append(np.linspace(d[i2], d[end], 60))
             curve_q.append(masing_force(c, mu, along, curve_d[-1], [q1, q2]))
             graded += list(reload)
-            q_star = 0.5 * (abs(Q[i1]) + abs(Q[i2]))
+            q_star = 0.5 * (abs(path_q[i1]) + abs(path_q[i2]))
             if end < k - 1:
                 notes.append(f"the path turns back a third time (index {end}): the "
                              f"{k - 1 - end} points after it are not graded")
         else:
-            q_star = abs(Q[i1])
+            q_star = abs(path_q[i1])
             notes.append("the path has one reversal: the unloading branch is graded, there "
                          "is no reloading branch and no closed loop (no loop energy)")
-        branch_err = float(max(np.abs(Q[graded] - q_ref[graded]))) / q_star if graded else \
+        branch_err = float(max(np.abs(path_q[graded] - q_ref[graded]))) / q_star if graded else \
             math.nan
         if len(rev) > 1:
-            loop = _closing_loop(d, Q, i1, i2, end)
+            loop = _closing_loop(d, path_q, i1, i2, end)
             if loop is None:
                 notes.append(f"the reloading branch stops at displacement {d[end]:.6g} m, "
                              f"before the first reversal's {d[i1]:.6g} m: the loop is not "
@@ -487,7 +487,7 @@ def grade_tangential(result: TangentialResult, scene,
 
     # --- the snapshot: stick zone, traction profiles ------------------------------------
     snap = result.snapshot
-    q_snap = float(Q[snap])
+    q_snap = float(path_q[snap])
     nan_t = {"stick_a": math.nan, "stick_b": math.nan, "angle_deg": math.nan, "fit_nodes": 0}
     fit, t, prof = nan_t, None, {}
     mirrored = _mirror_axes(result.symmetry, xy)
@@ -500,7 +500,7 @@ def grade_tangential(result: TangentialResult, scene,
                      f"mu P = {limit:.6g} N (partial slip): no stick zone to grade")
     else:
         t = c.tangential(q_snap, mu, along)
-        fit = stick_ellipse(XY, p, q, mu, cross_term=result.symmetry == "whole")
+        fit = stick_ellipse(ellipse_xy, p, q, mu, cross_term=result.symmetry == "whole")
         ref = SimpleNamespace(a=c.a, b=c.b, p0=scale, major_axis_angle=theta,
                               pressure=t.traction)
         prof = pressure_profiles(ref, xy, tri, q, mirrored)
@@ -542,7 +542,7 @@ def grade_tangential(result: TangentialResult, scene,
              "snapshot_force_ratio": q_snap / limit, "reversals": list(rev),
              "amplitude": q_star, "loop_energy": w_fem, "shear_integral": shear_integral},
         profiles=prof,
-        path={"displacement": d, "force": Q, "reference_force": q_ref,
+        path={"displacement": d, "force": path_q, "reference_force": q_ref,
               "branch": [str(b) for b in branch], "reference_curve": (curve_d, curve_q)},
         notes=tuple(notes), details=dict(result.details))
 
