@@ -26,10 +26,11 @@ import pytest
 pytest.importorskip("scipy")
 
 import fem_validation.grade_tangential as gt  # noqa: E402
+import hertz  # noqa: E402
 from fem_validation import grade_cli  # noqa: E402
 from fem_validation.readers.tangential_csv import read_tangential  # noqa: E402
 from fem_validation.result import ContactFrame, ResultError  # noqa: E402
-from fem_validation.scenes import crossed_30deg, equal_steel  # noqa: E402
+from fem_validation.scenes import Scene, crossed_30deg, equal_steel  # noqa: E402
 from fem_validation.tangential_result import TangentialResult, path_reversals  # noqa: E402
 
 ROOT = Path(__file__).resolve().parents[1]
@@ -254,3 +255,244 @@ def _fields(r):
                                        "direction", "displacement", "force", "snapshot",
                                        "symmetry", "frame", "triangles", "stick", "source",
                                        "details")}
+
+
+# --- paths that hold less ---------------------------------------------------------------
+
+def test_paths_that_hold_less_are_graded_as_far_as_they_go():
+    """No reversal: the ramp and the stick zone only; one reversal: no loop energy; a
+    reloading that stops short: no loop energy; one past the first reversal's displacement
+    continues on the virgin curve and is graded so (exactly); each says why in the notes."""
+    scene = equal_steel(3)
+    c, full = synthetic(scene, symmetry="quarter", steps=8, h_over_b=0.08)
+    k = len(full.force)
+
+    def cut(n, **kw):
+        return TangentialResult(**{**_fields(full), "displacement": full.displacement[:n],
+                                   "force": full.force[:n], "snapshot": None, **kw})
+
+    g = gt.grade_tangential(cut(9), scene)  # the ramp only
+    assert g.passed and g.fem["reversals"] == []
+    assert {n for n in CHECKED if g.check(n).status == "not available"} == {
+        "branch_err_max", "loop_energy_rel_err"}
+    assert "never turns back" in g.notes[0]
+    g = gt.grade_tangential(cut(20), scene)  # ramp and part of the unloading
+    assert abs(g.metrics["branch_err_max"]) < 1e-12
+    assert g.check("loop_energy_rel_err").status == "not available"
+    g = gt.grade_tangential(cut(k - 3), scene)  # the reloading stops short
+    assert g.check("loop_energy_rel_err").status == "not available"
+    assert any("not closed" in n for n in g.notes)
+    _, past = synthetic(scene, symmetry="quarter", steps=8, h_over_b=0.08, reload_to=0.95)
+    assert past.force.max() > full.force.max()
+    g = gt.grade_tangential(past, scene)
+    assert g.passed and abs(g.metrics["branch_err_max"]) < 1e-12
+    # the same loop, its last segment cut at the first reversal's displacement
+    assert -0.006 < g.metrics["loop_energy_rel_err"] < -0.003
+    g = gt.grade_tangential(cut(k, snapshot=12), scene)  # a snapshot on the unloading
+    assert g.check("stick_a_rel_err").status == "not available"
+    assert any("after the first reversal" in n for n in g.notes)
+
+
+def test_a_third_reversal_is_not_graded():
+    scene = equal_steel(1)
+    c, r = synthetic(scene, symmetry="quarter", steps=8, h_over_b=0.08)
+    d = np.concatenate([r.displacement, r.displacement[-2:-5:-1]])
+    q = np.concatenate([r.force, r.force[-2:-5:-1]])
+    g = gt.grade_tangential(TangentialResult(**{**_fields(r), "displacement": d, "force": q}),
+                            scene)
+    assert g.passed and any("third time" in n for n in g.notes)
+    assert g.path["branch"][-1] == "beyond"
+
+
+# --- bad input --------------------------------------------------------------------------
+
+def _bad(r, **kw):
+    return {**_fields(r), **kw, "source": "run.csv"}
+
+
+@pytest.mark.parametrize("change,words", [
+    (lambda r: {"shear": np.where(np.arange(len(r.shear))[:, None] == 3, np.nan, r.shear)},
+     ("run.csv", "'shear'", "non-finite", "(3, 0)")),
+    (lambda r: {"shear": r.shear[:, 0]}, ("'shear'", "must have shape (121, 2)")),
+    (lambda r: {"pressure": -r.pressure}, ("'pressure'", "empty")),
+    (lambda r: {"mu": 0.0}, ("'mu'", "> 0", "0.0")),
+    (lambda r: {"normal_force": math.nan}, ("'normal_force'", "nan")),
+    (lambda r: {"direction": math.inf}, ("'direction'", "inf")),
+    (lambda r: {"displacement": r.displacement + 1e-6}, ("'displacement'", "start at 0")),
+    (lambda r: {"displacement": -r.displacement, "force": -r.force},
+     ("'displacement'", "rise first", "index 1")),
+    (lambda r: {"displacement": r.displacement[:1], "force": r.force[:1]},
+     ("'displacement'", "2 or more")),
+    (lambda r: {"force": r.force[:-1]}, ("'force'", "shape")),
+    (lambda r: {"snapshot": 0}, ("'snapshot'", "1..", "got 0")),
+    (lambda r: {"snapshot": 99}, ("'snapshot'", "got 99")),
+    (lambda r: {"snapshot": True}, ("'snapshot'", "int")),
+    (lambda r: {"symmetry": "eighth"}, ("'symmetry'", "eighth")),
+    (lambda r: {"direction": r.direction + 0.3}, ("'direction'", "quarter", "frame axis")),
+    (lambda r: {"stick": r.stick[:-1]}, ("'stick'", "shape")),
+    (lambda r: {"triangles": r.triangles + len(r.points)}, ("'triangles'", "index")),
+])
+def test_bad_results_are_refused_naming_the_field(change, words):
+    _, r = synthetic(equal_steel(1), symmetry="quarter", steps=4, h_over_b=0.15)
+    with pytest.raises(ResultError) as err:
+        TangentialResult(**_bad(r, **change(r)))
+    for w in words:
+        assert w in str(err.value), (w, str(err.value))
+
+
+@pytest.mark.parametrize("change,words", [
+    (lambda r: {"pressure": r.pressure * 1e6}, ("pressure integral", "factor")),
+    (lambda r: {"force": r.force * 4}, ("exceeds mu P", "index")),
+    (lambda r: {"symmetry": "whole"}, ("pressure integral",)),
+    (lambda r: {"symmetry": "whole", "pressure": r.pressure * 4},
+     ("does not match", "semi-major axis")),
+])
+def test_results_that_contradict_the_scene_are_bad_input(change, words):
+    """Units, symmetry or a scene that does not match: a ResultError, not a failed grade.
+    (The last: a scene with 4 times the radii at the same load, a 1.59 times larger.)"""
+    scene = equal_steel(1)
+    _, r = synthetic(scene, symmetry="quarter", steps=4, h_over_b=0.1)
+    if "pressure" in change(r) and "symmetry" in change(r):
+        ball = hertz.Body(0.04, 0.04, E=210e9, nu=0.3)
+        scene = Scene("big", ball, ball, scene.load)
+    with pytest.raises(ResultError) as err:
+        gt.grade_tangential(TangentialResult(**_bad(r, **change(r))), scene)
+    assert "run.csv" in str(err.value)
+    for w in words:
+        assert w in str(err.value), (w, str(err.value))
+
+
+def test_bad_tolerances_are_refused():
+    _, r = synthetic(equal_steel(1), symmetry="quarter", steps=4, h_over_b=0.15)
+    with pytest.raises(ValueError, match="unknown metric 'a_rel_err'"):
+        gt.grade_tangential(r, equal_steel(1), {"a_rel_err": 0.01})
+    with pytest.raises(ValueError, match="stick_a_rel_err must be a finite number > 0"):
+        gt.grade_tangential(r, equal_steel(1), {"stick_a_rel_err": -1.0})
+
+
+# --- files, report, command line -------------------------------------------------------
+
+SCENE_TOML = """name = "alpha 3"
+load = {load!r}
+[body1]
+Rx = 0.01
+Ry = 0.03
+E = 210e9
+nu = 0.3
+[body2]
+Rx = 0.01
+Ry = 0.03
+E = 210e9
+nu = 0.3
+"""
+
+
+def write_csvs(tmp_path, r, units="SI", meta=True, quarter_forces=True, stick=True):
+    """The result as the two CSV files of a quarter model (its own forces), SI or mm."""
+    length, stress = (1e3, 1e-6) if units == "mm" else (1.0, 1.0)
+    mult = r.multiplicity if quarter_forces else 1
+    surface, history = tmp_path / "surface.csv", tmp_path / "history.csv"
+    lines = []
+    if meta:
+        lines += [f"# mu = {r.mu!r}", f"# direction_deg = {math.degrees(r.direction)!r}",
+                  f"# normal_force = {float(r.normal_force) / mult!r}", f"# units = {units}"]
+    lines.append("x [m],y,z,p,qx,qy" + (",stick" if stick else ""))
+    for pt, p, q, s in zip(r.points, r.pressure, r.shear, r.stick, strict=True):
+        row = [*(pt * length), p * stress, *(q * stress)] + ([int(s)] if stick else [])
+        lines.append(",".join(repr(float(v)) for v in row))
+    surface.write_text("\n".join(lines) + "\n")
+    rows = [f"# units = {units}", "displacement,force"]
+    rows += [f"{float(d) * length!r},{float(f) / mult!r}" for d, f in zip(r.displacement, r.force,
+                                                             strict=True)]
+    history.write_text("\n".join(rows) + "\n")
+    return surface, history
+
+
+def test_the_reader_gives_back_the_result(tmp_path):
+    """SI and mm files give the same result: forces of the quarter model x4, frame and
+    symmetry detected, shear in the frame; the grade equals the in-memory one."""
+    scene = equal_steel(3)
+    _, r = synthetic(scene, symmetry="quarter", steps=8, h_over_b=0.08, triangles=False)
+    g0 = gt.grade_tangential(r, scene)
+    for units in ("SI", "mm"):
+        (tmp_path / units).mkdir()
+        s, h = write_csvs(tmp_path / units, r, units)
+        back = read_tangential(s, h)
+        assert back.symmetry == "quarter" and back.frame.is_standard
+        assert back.normal_force == pytest.approx(r.normal_force, rel=1e-14)
+        np.testing.assert_allclose(back.force, r.force, rtol=1e-14, atol=1e-14 * r.force.max())
+        np.testing.assert_allclose(back.shear, r.shear, rtol=1e-12, atol=1e-6)
+        np.testing.assert_allclose(back.displacement, r.displacement, rtol=1e-12, atol=1e-20)
+        assert back.direction == pytest.approx(r.direction, abs=1e-15)
+        np.testing.assert_array_equal(back.stick, r.stick)
+        g = gt.grade_tangential(back, scene)
+        for name in CHECKED:
+            assert g.metrics[name] == pytest.approx(g0.metrics[name], rel=1e-6, abs=1e-12)
+
+
+def test_the_report_files(tmp_path):
+    """grade.json is strict JSON holding every metric and check with its meaning; grade.md
+    names the verdict, every check and the notes; grade.png is written."""
+    scene = equal_steel(3)
+    _, r = synthetic(scene, symmetry="quarter", steps=8, h_over_b=0.08, mu_data=MU * 1.02,
+                     q_ratio=0.9)
+    g = gt.grade_tangential(r, scene)
+    paths = gt.write_grade(g, tmp_path, "python -m fem_validation grade ...")
+    row = json.loads(paths[0].read_text(), parse_constant=lambda c: pytest.fail(c))
+    assert row["passed"] is False and row["kind"] == "tangential"
+    assert {c["name"] for c in row["checks"]} == set(gt.METRICS)
+    assert all(c["meaning"] for c in row["checks"])
+    assert row["stick_a_rel_err"] == pytest.approx(g.metrics["stick_a_rel_err"])
+    md = paths[1].read_text()
+    assert "FAILED" in md and "stick_a_rel_err" in md and "| information |" in md
+    assert "by construction" in md  # the Coulomb condition is said not to be a check
+    assert paths[2].stat().st_size > 10_000
+
+
+def test_command_line(tmp_path, capsys):
+    """Exit 0 on exact data, 1 with mu 2% off (--mu), 2 with one line for bad input."""
+    scene = equal_steel(3)
+    c, r = synthetic(scene, symmetry="quarter", steps=8, h_over_b=0.08, q_ratio=0.9)
+    toml = tmp_path / "scene.toml"
+    toml.write_text(SCENE_TOML.format(load=c.load))
+    s, h = write_csvs(tmp_path, r)
+    base = ["--tangential", str(s), "--history", str(h), "--scene", str(toml)]
+    assert grade_cli.main(base + ["--out", str(tmp_path / "ok")]) == 0
+    assert capsys.readouterr().out.startswith("PASSED")
+    assert (tmp_path / "ok" / "grade.png").is_file()
+    assert grade_cli.main(base + ["--mu", str(MU * 0.98), "--out", str(tmp_path / "f")]) == 1
+    assert "stick_a_rel_err" in capsys.readouterr().out
+    bare, hb = write_csvs(tmp_path / "f", r, meta=False)
+    ok = ["--tangential", str(bare), "--history", str(hb), "--scene", str(toml),
+          "--mu", str(MU), "--direction-deg", str(math.degrees(r.direction)),
+          "--symmetry", "quarter", "--out", str(tmp_path / "bare")]
+    assert grade_cli.main(ok) == 0  # the normal force from the scene
+    capsys.readouterr()
+    bad = [(["--tangential", str(s), "--scene", str(toml)], "--history"),
+           (base + ["--force", "3"], "--force"),
+           (base + ["--mu", "-1"], "--mu"),
+           (base + ["--snapshot", "0"], "--snapshot"),
+           (base + ["--tolerance", "a_rel_err=0.1"], "a_rel_err"),
+           (["--tangential", str(bare), "--history", str(hb), "--scene", str(toml)], "mu"),
+           (base + ["--normal-force", "1e6"], "pressure integral"),
+           (["--tangential", str(h), "--history", str(h), "--scene", str(toml)], "column"),
+           ([str(s), "--scene", str(toml), "--mu", "0.3"], "only apply to --tangential")]
+    for argv, word in bad:
+        assert grade_cli.main(argv + ["--out", str(tmp_path / "bad")]) == 2, argv
+        err = capsys.readouterr().err
+        assert err.count("\n") == 1 and word in err, (argv, err)
+
+
+def test_python_m_fem_validation_grade_tangential(tmp_path):
+    """The documented command, end to end in a subprocess."""
+    scene = equal_steel(3)
+    c, r = synthetic(scene, symmetry="quarter", steps=8, h_over_b=0.1)
+    toml = tmp_path / "scene.toml"
+    toml.write_text(SCENE_TOML.format(load=c.load))
+    s, h = write_csvs(tmp_path, r)
+    run = subprocess.run([sys.executable, "-m", "fem_validation", "grade", "--tangential",
+                          str(s), "--history", str(h), "--scene", str(toml), "--out",
+                          str(tmp_path / "out")], capture_output=True, text=True, cwd=ROOT,
+                         timeout=300)
+    assert run.returncode == 0, run.stderr
+    assert json.loads((tmp_path / "out" / "grade.json").read_text())["passed"] is True
