@@ -459,16 +459,16 @@ def grade_tangential(result: TangentialResult, scene,
             curve_d.append(np.linspace(d[i2], d[end], 60))
             curve_q.append(masing_force(c, mu, along, curve_d[-1], [q1, q2]))
             graded += list(reload)
-            q_star = 0.5 * (abs(path_q[i1]) + abs(path_q[i2]))
+            q_star = 0.5 * float(abs(path_q[i1]) + abs(path_q[i2]))
             if end < k - 1:
                 notes.append(f"the path turns back a third time (index {end}): the "
                              f"{k - 1 - end} points after it are not graded")
         else:
-            q_star = abs(path_q[i1])
+            q_star = float(abs(path_q[i1]))
             notes.append("the path has one reversal: the unloading branch is graded, there "
                          "is no reloading branch and no closed loop (no loop energy)")
-        branch_err = float(max(np.abs(path_q[graded] - q_ref[graded]))) / q_star if graded else \
-            math.nan
+        branch_err = (float(np.abs(path_q[graded] - q_ref[graded]).max() / q_star) if graded
+                      else math.nan)
         if len(rev) > 1:
             loop = _closing_loop(d, path_q, i1, i2, end)
             if loop is None:
@@ -501,6 +501,10 @@ def grade_tangential(result: TangentialResult, scene,
     else:
         t = c.tangential(q_snap, mu, along)
         fit = stick_ellipse(ellipse_xy, p, q, mu, cross_term=result.symmetry == "whole")
+        if not math.isfinite(fit["stick_a"]):
+            notes.append(f"the fit of (mu p - q)^2 on the {fit['fit_nodes']} nodes above "
+                         f"{FIT_THRESHOLD:g} of its largest value is not an ellipse: no stick "
+                         f"semi-axes")
         ref = SimpleNamespace(a=c.a, b=c.b, p0=scale, major_axis_angle=theta,
                               pressure=t.traction)
         prof = pressure_profiles(ref, xy, tri, q, mirrored)
@@ -552,6 +556,8 @@ def grade_tangential(result: TangentialResult, scene,
 def _fmt(name: str, value) -> str:
     if value is None or (isinstance(value, float) and math.isnan(value)):
         return "-"
+    if value != 0 and abs(value) < 5e-5:  # exact data: show the rounding, not +0.00%
+        return f"{value:+.1e}"
     if name.startswith("traction_rms") or name in ("branch_err_max", "transverse_shear_max"):
         return f"{value:.2%}"
     return f"{value:+.2%}"
@@ -596,7 +602,7 @@ def grade_markdown(g: TangentialGrade, command: str = "") -> str:
         header, meaning = METRICS[ch.name]
         status = ch.status.upper() if ch.passed is not None else ch.status
         tolerance = "-" if ch.tolerance is None else f"{ch.tolerance:.2%}"
-        lines.append(f"| {header} (`{ch.name}`) | {meaning.replace('|', '/')} | "
+        lines.append(f"| {header} (`{ch.name}`) | {meaning.replace('|', chr(92) + '|')} | "
                      f"{_fmt(ch.name, ch.value)} | {tolerance} | {status} |")
     if g.notes:
         lines += ["", "## Notes", ""] + [f"- {n}" for n in g.notes]
@@ -636,6 +642,13 @@ def plot_grade(g: TangentialGrade, path: Path) -> Path:
             s = d["s"] / semi
             ax.plot(s, np.sqrt(np.clip(1 - s * s, 0, None)), ":", color="0.5",
                     label="mu p (Hertz): the limit of friction")
+            key = "stick_a" if name == "major" else "stick_b"
+            ax.axvline(r[key] / semi, color="k", lw=0.8, ls="--",
+                       label=f"stick edge, Cattaneo-Mindlin ({r[key] / semi:.4f})")
+            fitted = g.fem["stick_fit"][key]
+            if math.isfinite(fitted):
+                ax.axvline(fitted / semi, color="C3", lw=0.8, ls=":",
+                           label=f"stick edge, fit to the result ({fitted / semi:.4f})")
             ax.legend(fontsize=7, loc="lower center")
         else:
             ax.text(0.5, 0.5, "not graded (see the notes)", ha="center", transform=ax.transAxes)
@@ -679,10 +692,11 @@ def plot_grade(g: TangentialGrade, path: Path) -> Path:
 
 
 def write_grade(g: TangentialGrade, out, command: str = "") -> tuple[Path, Path, Path]:
-    """DIR/grade.json, DIR/grade.md and DIR/grade.png of a TangentialGrade."""
+    """DIR/grade.json, DIR/grade.md and DIR/grade.png of a TangentialGrade (DIR created)."""
     import json
 
     out = Path(out)
+    out.mkdir(parents=True, exist_ok=True)
     paths = out / "grade.json", out / "grade.md", out / "grade.png"
     row = g.to_dict()
     if command:
