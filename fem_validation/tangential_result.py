@@ -82,7 +82,7 @@ def path_reversals(displacement) -> tuple[int, ...]:
     moving = np.nonzero(steps != 0)[0]
     sense = np.sign(steps[moving])
     turns = np.nonzero(sense[1:] != sense[:-1])[0]
-    return tuple(int(moving[j] + 1) for j in turns)
+    return tuple(int(moving[j + 1]) for j in turns)  # the start of the step back
 
 
 @dataclass(frozen=True)

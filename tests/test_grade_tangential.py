@@ -496,3 +496,14 @@ def test_python_m_fem_validation_grade_tangential(tmp_path):
                          timeout=300)
     assert run.returncode == 0, run.stderr
     assert json.loads((tmp_path / "out" / "grade.json").read_text())["passed"] is True
+
+
+def test_docstring_examples():
+    """The modules' examples run (pytest's --doctest-modules covers hertz/ only)."""
+    import doctest
+
+    import fem_validation.tangential_result as tr
+
+    for module in (gt, tr):
+        failures, tried = doctest.testmod(module, optionflags=doctest.ELLIPSIS)
+        assert tried > 0 and failures == 0, module.__name__
