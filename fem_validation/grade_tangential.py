@@ -510,9 +510,11 @@ def grade_tangential(result: TangentialResult, scene,
         prof = pressure_profiles(ref, xy, tri, q, mirrored)
     s2 = (t.stick_a / c.a) ** 2 if t is not None else math.nan
     pressed = p > 0
-    stick_area = math.nan
-    if result.stick is not None and t is not None:
-        stick_area = float(area[pressed & result.stick].sum() / area[pressed].sum()) / s2 - 1
+    stick_area, flagged = math.nan, math.nan
+    if result.stick is not None:
+        flagged = float(area[pressed & result.stick].sum() / area[pressed].sum())
+        if t is not None:
+            stick_area = flagged / s2 - 1
     shear_integral = result.multiplicity * float(q @ area)
     metrics = {
         "stick_a_rel_err": fit["stick_a"] / t.stick_a - 1 if t is not None else math.nan,
@@ -544,7 +546,8 @@ def grade_tangential(result: TangentialResult, scene,
                    "force_at_first_reversal": q1, "loop_energy": w_ref, "mu_P": limit},
         fem={"stick_fit": fit, "snapshot": snap, "snapshot_force": q_snap,
              "snapshot_force_ratio": q_snap / limit, "reversals": list(rev),
-             "amplitude": q_star, "loop_energy": w_fem, "shear_integral": shear_integral},
+             "amplitude": q_star, "loop_energy": w_fem, "shear_integral": shear_integral,
+             "stick_area_fraction": flagged},
         profiles=prof,
         path={"displacement": d, "force": path_q, "reference_force": q_ref,
               "branch": [str(b) for b in branch], "reference_curve": (curve_d, curve_q)},
@@ -585,6 +588,9 @@ def grade_markdown(g: TangentialGrade, command: str = "") -> str:
         f"- path: {len(g.path['displacement'])} points, reversals at {f['reversals']}; "
         f"Q* = {f['amplitude']:.6g} N; loop energy {f['loop_energy']:.6g} J, "
         f"Mindlin-Deresiewicz's {r['loop_energy']:.6g} J"]
+    if math.isfinite(f["stick_area_fraction"]):
+        lines.append(f"- the code's stick flags cover {f['stick_area_fraction']:.4g} of the "
+                     f"pressed area (Cattaneo-Mindlin: {r['stick_area_fraction']:.4g})")
     if g.details:
         lines.append("- details: " + ", ".join(f"{k} = {v}" for k, v in g.details.items()))
     lines += ["", "## Sign convention", "",
