@@ -136,7 +136,7 @@ def test_exact_data_is_graded_exact(scene, symmetry, axis, turn):
     """The stick fit and the force along the path are exact on exact data (observed below
     2e-15); the loop energy errs by the trapezoid rule's -1.1 / m^2 (m = 32 force steps per
     branch: -0.11%); the traction RMS is the linear interpolation across the kinks at the
-    stick and contact edges, observed 0.4-1.4% of mu p0 at h = 0.05 b."""
+    stick and contact edges, observed 0.07-1.34% of mu p0 at h = 0.05 b."""
     c, r = synthetic(scene, symmetry=symmetry, axis=axis, turn=turn,
                      h_over_b=0.05,
                      triangles=symmetry != "half")
@@ -232,9 +232,12 @@ def test_a_one_percent_error_fails_a_tighter_tolerance():
 
 
 def test_a_wrong_traction_fails_the_profiles():
-    """The shear 8% too large everywhere fails both traction profiles (observed RMS 3.2%
-    and 3.7% of mu p0 against 0.5% and 1.0% for the exact shear); a transverse shear of 5%
-    of mu p0 is reported as information and fails nothing."""
+    """The shear 8% too large everywhere fails both traction profiles (observed RMS 3.9%
+    and 4.0% of mu p0 against 0.9% and 1.2% for the exact shear; it fails the stick zone
+    too); a transverse shear of 5% of mu p0 is reported as information and fails nothing.
+    (A 2% error in the shear moves the RMS by about 1% of mu p0: the 3% tolerance, to be
+    retuned from FEM runs, does not see it; mu, the exponent and the stiffness are caught
+    by the other checks, test_a_wrong_reference_fails.)"""
     scene = equal_steel(3)
     c, r = synthetic(scene, symmetry="quarter", h_over_b=0.05)
     big = TangentialResult(**{**_fields(r), "shear": r.shear * 1.08})
