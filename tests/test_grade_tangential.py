@@ -236,8 +236,8 @@ def test_a_wrong_traction_fails_the_profiles():
     and 4.0% of mu p0 against 0.9% and 1.2% for the exact shear; it fails the stick zone
     too); a transverse shear of 5% of mu p0 is reported as information and fails nothing.
     (A 2% error in the shear raises the RMS from 0.9% to 1.3% (minor: 1.2% to 1.5%) of mu
-    p0: the 3% tolerance, to be retuned from FEM runs, does not see it; mu, the exponent and the stiffness are caught
-    by the other checks, test_a_wrong_reference_fails.)"""
+    p0: the 3% tolerance, to be retuned from FEM runs, does not see it; mu, the exponent
+    and the stiffness are caught by the other checks, test_a_wrong_reference_fails.)"""
     scene = equal_steel(3)
     c, r = synthetic(scene, symmetry="quarter", h_over_b=0.05)
     big = TangentialResult(**{**_fields(r), "shear": r.shear * 1.08})
