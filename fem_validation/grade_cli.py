@@ -3,8 +3,13 @@
     python -m fem_validation grade RESULT --scene FILE.toml [--units mm]
         [--symmetry quarter] [--force N] [--tolerance NAME=VALUE ...] --out DIR
     python -m fem_validation grade --force-approach CURVE.csv --scene FILE.toml --out DIR
+    python -m fem_validation grade --tangential SURFACE.csv --history PATH.csv --mu 0.3
+        --scene FILE.toml [--direction-deg 0] [--normal-force N] [--symmetry quarter]
+        [--snapshot INDEX] --out DIR
 
-Writes DIR/grade.json, DIR/grade.md and DIR/grade.png.  Exit status 0 when every
+Writes DIR/grade.json, DIR/grade.md and DIR/grade.png (``--tangential``: a frictional
+result against Cattaneo-Mindlin and Mindlin-Deresiewicz,
+:mod:`fem_validation.grade_tangential`).  Exit status 0 when every
 check passes, 1 when one fails, 2 for bad input (one line on stderr naming the
 file and the field), so that other projects can run it in their CI.
 """
@@ -51,6 +56,26 @@ def _positive(text: str) -> float:
     return x
 
 
+def _finite(text: str) -> float:
+    try:
+        x = float(text)
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"not a number: {text!r}") from None
+    if not math.isfinite(x):
+        raise argparse.ArgumentTypeError(f"must be a finite number, got {text!r}")
+    return x
+
+
+def _index(text: str) -> int:
+    try:
+        k = int(text)
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"not an integer: {text!r}") from None
+    if k < 1:
+        raise argparse.ArgumentTypeError(f"must be a path index >= 1, got {text!r}")
+    return k
+
+
 def parser() -> OneLineParser:
     p = OneLineParser(prog="python -m fem_validation grade",
                       description="Grade a contact result of any finite-element code (or a "
@@ -63,6 +88,26 @@ def parser() -> OneLineParser:
     p.add_argument("--force-approach", type=Path, metavar="CURVE.csv",
                    help="grade a normal force against approach curve (columns approach, "
                         "force) instead of a result file")
+    t = p.add_argument_group("a frictional result (--tangential)")
+    t.add_argument("--tangential", type=Path, metavar="SURFACE.csv",
+                   help="grade a frictional result against Cattaneo-Mindlin and "
+                        "Mindlin-Deresiewicz: the contact surface at one state (columns x, y, "
+                        "z, p, qx, qy[, stick]); needs --history")
+    t.add_argument("--history", type=Path, metavar="PATH.csv",
+                   help="the tangential path (columns displacement, force), from the "
+                        "unloaded state: ramp, unloading, reloading")
+    t.add_argument("--mu", type=_positive, help="coefficient of friction (default: the "
+                                                "surface file's '# mu' line)")
+    t.add_argument("--direction-deg", type=_finite, metavar="DEG",
+                   help="the load's angle from body 1's x axis [deg] (default: the file's "
+                        "'# direction_deg' line, else 0)")
+    t.add_argument("--normal-force", type=_positive, metavar="N",
+                   help="normal force of the model in the file (a quarter model's own), in "
+                        "the file's force unit (default: the file's '# normal_force' line, "
+                        "else the scene's load, whole contact)")
+    t.add_argument("--snapshot", type=_index, metavar="INDEX",
+                   help="path index of the surface's state (default: the file's '# "
+                        "snapshot' line, else the first reversal)")
     p.add_argument("--units", choices=("SI", "m", "mm"),
                    help="units of the file: SI (m, N, Pa) or mm (mm, N, MPa); default SI or "
                         "the CSV's '# units' line")
@@ -138,11 +183,55 @@ def run(argv: list[str]) -> int:
 
     args = parser().parse_args(argv)
     command = " ".join(["python -m fem_validation grade", *argv])
-    if (args.result is None) == (args.force_approach is None):
-        raise UsageError("python -m fem_validation grade: give a RESULT file or "
-                         "--force-approach CURVE.csv (one of them)")
+    inputs = [x for x in (args.result, args.force_approach, args.tangential) if x is not None]
+    if len(inputs) != 1:
+        raise UsageError("python -m fem_validation grade: give a RESULT file, "
+                         "--force-approach CURVE.csv or --tangential SURFACE.csv (one of them)")
+    friction = {"--history": args.history, "--mu": args.mu,
+                "--direction-deg": args.direction_deg, "--normal-force": args.normal_force,
+                "--snapshot": args.snapshot}
+    if args.tangential is not None:
+        if args.history is None:
+            raise UsageError("python -m fem_validation grade: --tangential needs --history "
+                             "PATH.csv (columns displacement, force)")
+        normal_only = {"--force": args.force, "--pressure-field": args.pressure_field,
+                       "--normal-force-field": args.normal_force_field,
+                       "--reaction-field": args.reaction_field,
+                       "--stress-field": args.stress_field}
+        given = [k for k, v in normal_only.items() if v is not None]
+        if args.semi_axes != "auto":
+            given.append("--semi-axes")
+        if given:
+            raise UsageError(f"python -m fem_validation grade: {', '.join(given)} do(es) not "
+                             f"apply to --tangential (the normal force: --normal-force)")
+    else:
+        given = [k for k, v in friction.items() if v is not None]
+        if given:
+            raise UsageError(f"python -m fem_validation grade: {', '.join(given)} only apply "
+                             f"to --tangential SURFACE.csv")
     out = output.prepare_out(args.out)
     scene = scene_from_toml(args.scene)
+    if args.tangential is not None:
+        from . import grade_tangential as gt
+        from .readers.tangential_csv import read_tangential
+
+        tol = tolerances_from(args, gt.DEFAULT_TOLERANCES, gt.METRICS)
+        length = units_of(args.units or "SI")[0]
+        frame = {k: v for k, v in (("origin", args.origin and [length * x for x in args.origin]),
+                                   ("normal", args.normal), ("x_axis", args.x_axis)) if v}
+        if len(frame) == 3:
+            frame = ContactFrame(**frame, source=str(args.tangential))
+        result = read_tangential(args.tangential, args.history, units=args.units,
+                                 symmetry=args.symmetry, normal_force=args.normal_force,
+                                 mu=args.mu, direction_deg=args.direction_deg,
+                                 snapshot=args.snapshot, frame=frame,
+                                 default_normal_force=scene.load)
+        g = gt.grade_tangential(result, scene, tol)
+        json_path, md_path, png_path = gt.write_grade(g, out, command)
+        verdict = "PASSED" if g.passed else "FAILED: " + ", ".join(
+            c.name for c in g.checks if c.status == "fail")
+        print(f"{verdict}; wrote {json_path}, {md_path}, {png_path}")
+        return 0 if g.passed else 1
     if args.force_approach is not None:
         tol = tolerances_from(args, CURVE_TOLERANCES, CURVE_METRICS)
         approach, force, _ = read_force_approach(args.force_approach, args.units)

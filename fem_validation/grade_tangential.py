@@ -1,0 +1,713 @@
+"""The tangential grading path: a :class:`~fem_validation.tangential_result.TangentialResult`
+against Cattaneo-Mindlin and Mindlin-Deresiewicz.
+
+Every source of a frictional result (our solver, readers of other codes' files)
+fills a TangentialResult; :func:`grade_tangential` turns it into a
+:class:`TangentialGrade`: metrics against ``hertz`` at the normal force the
+result held, one :class:`~fem_validation.grade.Check` per metric, pass/fail.
+It never imports a solver.
+
+Method (stated in every report).  Hertz's contact ``c`` at the result's P; the
+ellipse frame (X along the major axis a) is the contact frame turned by
+``c.major_axis_angle``, and the load's angle there is ``direction -
+c.major_axis_angle``.  q is the shear component along the load, mu p0 the
+scale of the tractions.
+
+* **Stick zone** (at the snapshot, on the monotonic ramp): Cattaneo-Mindlin's
+  mu p - q = mu p0 s sqrt(1 - X^2/c^2 - Y^2/d^2) in the stick ellipse (c, d) =
+  s (a, b), s = (1 - Q/(mu P))^(1/3), and 0 in the slip annulus, so a least-
+  squares fit of (mu p - q)^2 = A0 + A1 X^2 + A2 Y^2 (+ A12 X Y for a whole
+  model) on the nodes with p > 0 and mu p - q > FIT_THRESHOLD max(mu p - q)
+  gives the stick semi-axes sqrt(-A0/A1), sqrt(-A0/A2), exactly on exact data.
+  Reference: ``c.tangential(Q, mu, direction).stick_a, stick_b`` at the
+  result's own Q at the snapshot (matched force).
+* **Force against displacement** on the ramp (path points 1 to the first
+  reversal): the reference Q_ref(delta) is the inverse of Mindlin's virgin curve
+  ``hertz.tangential_history(c, [Q])`` (= ``Tangential.displacement``) at the
+  result's displacement, by bisection (:func:`masing_force`); the largest
+  |Q - Q_ref| / Q_ref.
+* **Unloading and reloading branches**: the reference follows the result's
+  displacement path by Masing's rule with memory, ``hertz.tangential_history``
+  with the reference's own reversal forces (Q_ref at the first reversal, then
+  at the second) inverted at each displacement; for a symmetric loop these are
+  ``c.fretting(Q*).unloading`` and ``reloading`` (tested).  The largest
+  |Q - Q_ref| / Q*, Q* the mean |Q| of the result at the two reversals.  A
+  reloading that passes the first reversal's displacement continues on the
+  virgin curve (memory), and is graded so.
+* **Loop energy**: the trapezoid rule over the closed loop, first reversal ->
+  second reversal -> back to the first reversal's displacement (the last
+  segment cut there by linear interpolation), against
+  ``c.fretting(Q*).energy``.  The trapezoid rule itself errs on exact Masing
+  data by about -1.0 / m^2 relative, m equal displacement steps per branch
+  (measured at Q* = 0.5, 0.8, 0.95 mu P: -1.00, -1.01, -1.04 / m^2; m = 8:
+  -1.6%, m = 16: -0.40%, m = 32: -0.10%), so from 10 steps per branch it
+  stays well inside the 3% tolerance.
+* **Traction profiles**: q interpolated linearly on the surface triangles along
+  Hertz's major and minor axes to PROFILE_EXTENT semi-axes (as
+  :func:`fem_validation.grade.pressure_profiles`) against
+  ``Tangential.traction``; the RMS of the difference over mu p0.
+* **Information, not checks**: the largest transverse shear |q_perp| / (mu p0)
+  (Mindlin's solution has none; a Coulomb contact shows some, its slip being
+  misaligned by up to ~9 degrees in the annulus), the area fraction the code
+  flags as stuck against s^2, and the integrals of p and q over the surface
+  against P and Q.  That slipping nodes carry |q| = mu p is NOT reported: any
+  Coulomb solver holds it by construction.
+
+Errors are (result - reference) / reference unless said otherwise.
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Callable, Mapping
+from dataclasses import dataclass, field
+from pathlib import Path
+from types import SimpleNamespace
+
+import numpy as np
+
+from .grade import (
+    FIT_THRESHOLD,
+    MISMATCH,
+    PROFILE_EXTENT,
+    Check,
+    _checks,
+    _mirror_axes,
+    _tolerances,
+    _worst,
+    fit_ellipse,
+    lumped_area,
+    nan_to_none,
+    pressure_profiles,
+    surface_triangles,
+)
+from .result import ResultError
+from .tangential_result import TangentialResult
+
+#: Halvings of [-mu P, mu P] in :func:`masing_force` (the last ones change nothing).
+BISECTION_STEPS = 64
+#: A path force beyond (1 + FORCE_SLACK) mu P is not a model of this contact (units,
+#: symmetry or mu contradict each other): bad input.
+FORCE_SLACK = 0.05
+
+#: Default tolerances of :func:`grade_tangential` (|value| at most this): issue 17's
+#: targets for the stick zone (2%), the force against displacement (1%) and the loop
+#: energy (3%); 3% of mu p0 for the traction profiles until FEM runs retune it.
+DEFAULT_TOLERANCES = {
+    "stick_a_rel_err": 0.02, "stick_b_rel_err": 0.02,
+    "force_rel_err_max": 0.01, "branch_err_max": 0.01,
+    "loop_energy_rel_err": 0.03,
+    "traction_rms_major": 0.03, "traction_rms_minor": 0.03,
+}
+
+#: Every metric: (short header, meaning).  Relative errors are fractions; RMS and
+#: shear values are fractions of mu p0.
+METRICS = {
+    "stick_a_rel_err": ("stick a", "stick-zone semi-axis along the major axis (fit of "
+                                   "(mu p - q)^2) against Cattaneo-Mindlin at the snapshot's Q"),
+    "stick_b_rel_err": ("stick b", "stick-zone semi-axis along the minor axis, likewise"),
+    "force_rel_err_max": ("force (ramp)", "largest |Q - Q_ref(delta)| / Q_ref(delta) on the "
+                                          "monotonic ramp, Mindlin's virgin curve"),
+    "branch_err_max": ("force (branches)", "largest |Q - Q_ref(delta)| / Q* on the unloading "
+                                           "and reloading branches (Masing's rule)"),
+    "loop_energy_rel_err": ("loop energy", "trapezoid area of the closed loop against "
+                                           "Mindlin-Deresiewicz's energy at Q*"),
+    "traction_rms_major": ("traction RMS major", "RMS of (q - q_CM) along the major axis to "
+                                                 f"{PROFILE_EXTENT} a, over mu p0"),
+    "traction_rms_minor": ("traction RMS minor", "as traction RMS major, along the minor axis "
+                                                 f"to {PROFILE_EXTENT} b"),
+    "transverse_shear_max": ("transverse shear", "largest |shear across the load| / (mu p0) "
+                                                 "(information: Mindlin's is 0)"),
+    "stick_area_rel_err": ("stick area (flags)", "area the code flags as stuck over the "
+                                                 "pressed area, against s^2 (information)"),
+    "pressure_integral_rel_err": ("p integral", "integral of p over the surface against P "
+                                                "(information)"),
+    "shear_integral_rel_err": ("q integral", "integral of q over the surface against the "
+                                             "snapshot's Q (information)"),
+}
+
+
+@dataclass(frozen=True)
+class TangentialGrade:
+    """A frictional result graded against Cattaneo-Mindlin and Mindlin-Deresiewicz.
+
+    Attributes
+    ----------
+    scene, source : what was graded
+    normal_force : float
+        P of the whole contact [N] (Hertz is evaluated there).
+    mu : float
+    direction : float
+        The load's angle from the frame's x axis [rad].
+    symmetry : str
+    metrics : dict
+        Every metric of :data:`METRICS` (NaN where not available).
+    checks : tuple of Check
+    passed : bool
+        Every checked metric within its tolerance.
+    reference : dict
+        Hertz's a, b, p0 [m, Pa], the stick semi-axes [m], Q*, the energy [J], ...
+    fem : dict
+        The result's fitted stick semi-axes, Q at the snapshot and reversals, its
+        loop energy, ...
+    profiles : dict
+        ``{"major"|"minor": {"s", "fem", "hertz", "rms"}}``: q of the result and of
+        Cattaneo-Mindlin along the axes ([m], [Pa]; "hertz" holds the reference).
+    path : dict
+        ``displacement``, ``force``, ``reference_force`` (NaN where not graded),
+        ``branch`` (per point: "start", "ramp", "unloading", "reloading", "beyond")
+        and the dense ``reference_curve`` (displacement, force).
+    notes : tuple of str
+        What could not be graded and why.
+    details : dict
+        The result's details.
+    """
+
+    scene: str
+    source: str
+    normal_force: float
+    mu: float
+    direction: float
+    symmetry: str
+    metrics: dict
+    checks: tuple
+    passed: bool
+    reference: dict = field(default_factory=dict)
+    fem: dict = field(default_factory=dict)
+    profiles: dict = field(default_factory=dict, repr=False)
+    path: dict = field(default_factory=dict, repr=False)
+    notes: tuple = ()
+    details: dict = field(default_factory=dict)
+
+    def __getattr__(self, name):
+        metrics = self.__dict__.get("metrics", {})
+        if name in metrics:
+            return metrics[name]
+        raise AttributeError(f"{type(self).__name__} has no attribute {name!r}")
+
+    def check(self, name: str) -> Check:
+        """The check of metric ``name``."""
+        return next(c for c in self.checks if c.name == name)
+
+    @property
+    def failed(self) -> list[str]:
+        """Messages for the checks that failed (empty if it passed)."""
+        return [f"{self.scene}: |{c.name}| = {abs(c.value):.3g} > {c.tolerance:.3g}"
+                for c in self.checks if c.status == "fail"]
+
+    def to_dict(self) -> dict:
+        """grade.json: the metrics at the top level, passed, checks, reference, fem, path."""
+        checks = [{**c.to_dict(), "meaning": METRICS[c.name][1]} for c in self.checks]
+        return nan_to_none({
+            "kind": "tangential", "scene": self.scene, "source": self.source,
+            "normal_force": self.normal_force, "mu": self.mu, "direction": self.direction,
+            "symmetry": self.symmetry, **self.metrics, "passed": self.passed,
+            "checks": checks, "reference": self.reference, "fem": self.fem,
+            "path": {k: v for k, v in self.path.items() if k != "reference_curve"},
+            "notes": list(self.notes), "details": self.details})
+
+
+# --- the reference ----------------------------------------------------------------------
+
+def masing_force(c, mu: float, direction: float, displacement, reversal_forces=()) -> np.ndarray:
+    """The tangential force [N] at a displacement on a Mindlin-Deresiewicz branch.
+
+    The Q with ``hertz.tangential_history(c, [*reversal_forces, Q], mu,
+    direction)[-1] == displacement``: after the force reversals given (none:
+    the virgin curve), Masing's rule with memory, inverted by bisection over
+    [-mu P, mu P] (the displacement rises with Q there).  A displacement
+    beyond the onset of sliding gives +-mu P.
+
+    Parameters
+    ----------
+    c : hertz.Contact
+    mu : float
+        Coefficient of friction [-].
+    direction : float
+        The load's angle from the major axis [rad].
+    displacement : array_like, shape (m,)
+        Displacements along the load [m].
+    reversal_forces : sequence of float
+        The forces [N] at the reversals before this branch, in order.
+
+    Returns
+    -------
+    ndarray, shape (m,)
+
+    Examples
+    --------
+    >>> import hertz
+    >>> ball = hertz.Body.sphere(0.01, E=210e9, nu=0.3)
+    >>> c = hertz.contact(ball, hertz.Body.plane(E=210e9, nu=0.3), load=100.0)
+    >>> d = c.tangential(20.0, mu=0.3).displacement
+    >>> print(f"{masing_force(c, 0.3, 0.0, [d])[0]:.12f}")
+    20.000000000000
+    """
+    import hertz
+
+    delta = np.atleast_1d(np.asarray(displacement, dtype=float))
+    limit = mu * c.load
+    lo, hi = np.full(delta.shape, -limit), np.full(delta.shape, limit)
+    prefix = np.repeat(np.asarray(reversal_forces, dtype=float).reshape(-1, 1), delta.size,
+                       axis=1)
+    for _ in range(BISECTION_STEPS):
+        mid = 0.5 * (lo + hi)
+        d = hertz.tangential_history(c, np.vstack([prefix, mid[None]]), mu, direction)[-1]
+        above = d > delta
+        hi, lo = np.where(above, mid, hi), np.where(above, lo, mid)
+    return 0.5 * (lo + hi)
+
+
+def stick_ellipse(ellipse_xy: np.ndarray, pressure: np.ndarray, shear: np.ndarray, mu: float,
+                  cross_term: bool) -> dict:
+    """Stick-zone semi-axes from a fit of (mu p - q)^2 = A0 + A1 X^2 + A2 Y^2 (+ A12 X Y).
+
+    Parameters
+    ----------
+    ellipse_xy : ndarray, shape (n, 2)
+        Node positions (X, Y) in the ellipse frame [m].
+    pressure, shear : ndarray, shape (n,)
+        p and the shear along the load q [Pa].
+    mu : float
+    cross_term : bool
+        Fit A12 (a whole model; a symmetric one has none by symmetry).
+
+    Returns
+    -------
+    dict
+        ``stick_a`` (the semi-axis nearer X), ``stick_b`` [m], ``angle_deg`` of the
+        stick_a axis from X, ``fit_nodes``; NaN semi-axes where the fit is not an
+        ellipse.
+    """
+    g = mu * pressure - shear
+    sel = (pressure > 0) & (g > FIT_THRESHOLD * g.max())
+    x, y = ellipse_xy[sel, 0], ellipse_xy[sel, 1]
+    cols = [np.ones(sel.sum()), -x * x, -y * y] + ([-x * y] if cross_term else [])
+    nan = {"stick_a": math.nan, "stick_b": math.nan, "angle_deg": math.nan,
+           "fit_nodes": int(sel.sum())}
+    if sel.sum() < len(cols):
+        return nan
+    coef, *_ = np.linalg.lstsq(np.column_stack(cols), g[sel] ** 2, rcond=None)
+    a0, qxx, qyy = coef[:3]
+    qxy = coef[3] if cross_term else 0.0
+    w, v = np.linalg.eigh(np.array([[qxx, qxy / 2], [qxy / 2, qyy]]))
+    if not (a0 > 0 and w[0] > 0):
+        return nan
+    semi = np.sqrt(a0 / w)
+    k = int(np.argmax(np.abs(v[0])))  # the eigenvector nearer X
+    angle = math.degrees(math.atan2(v[1, k], v[0, k]))
+    angle = (angle + 90) % 180 - 90
+    return {"stick_a": float(semi[k]), "stick_b": float(semi[1 - k]), "angle_deg": angle,
+            "fit_nodes": int(sel.sum())}
+
+
+def _face_triangles(result: TangentialResult, xy: np.ndarray) -> np.ndarray:
+    """The surface's triangles (given, else Delaunay), without faces seen edge-on."""
+    tri = result.triangles if result.triangles is not None else surface_triangles(xy)
+    d1, d2 = xy[tri[:, 1]] - xy[tri[:, 0]], xy[tri[:, 2]] - xy[tri[:, 0]]
+    projected = np.abs(d1[:, 0] * d2[:, 1] - d1[:, 1] * d2[:, 0])
+    if len(tri) and (projected <= 1e-12 * projected.max()).any():
+        tri = tri[projected > 1e-12 * projected.max()]
+    return tri
+
+
+def _sanity(result: TangentialResult, c, xy, area, where: str) -> None:
+    """Refuse results that cannot be graded against this scene (bad input, not a fail)."""
+    mult = result.multiplicity
+    if result.symmetry != "whole":
+        scale = np.abs(xy).max()
+        neg_x, neg_y = xy[:, 0].min() < -1e-6 * scale, xy[:, 1].min() < -1e-6 * scale
+        if (result.symmetry == "quarter" and (neg_x or neg_y)) or (neg_x and neg_y):
+            raise ResultError(f"{where}symmetry {result.symmetry!r}, but the contact surface "
+                              f"has nodes on both sides of a symmetry plane (x from "
+                              f"{xy[:, 0].min():.3g} m, y from {xy[:, 1].min():.3g} m in the "
+                              f"contact frame): give --symmetry whole, or the frame")
+    integral = mult * float(result.pressure @ area)
+    ratio = integral / result.normal_force
+    if not 1 / 1.8 < ratio < 1.8:
+        raise ResultError(f"{where}the pressure integral ({integral:.6g} N with symmetry "
+                          f"{result.symmetry!r}) and the normal force "
+                          f"({result.normal_force:.6g} N) disagree by a factor {ratio:.3g}: "
+                          f"units, symmetry or the normal force contradict each other")
+    fit = fit_ellipse(xy, result.pressure)
+    for name, value, hz in (("semi-major axis", fit["a"], c.a), ("semi-minor axis", fit["b"],
+                                                                 c.b)):
+        if math.isfinite(value) and not 1 / MISMATCH < value / hz < MISMATCH:
+            raise ResultError(f"{where}the scene does not match the result: the contact's "
+                              f"{name} from a fit of p^2 is {value:.4g} m, Hertz's at "
+                              f"{result.normal_force:.6g} N is {hz:.4g} m (a factor "
+                              f"{value / hz:.3g}); check the scene, the units and the frame")
+    limit = result.mu * result.normal_force
+    worst = int(np.argmax(np.abs(result.force)))
+    if abs(result.force[worst]) > (1 + FORCE_SLACK) * limit:
+        raise ResultError(f"{where}the tangential force {result.force[worst]:.6g} N at path "
+                          f"index {worst} exceeds mu P = {limit:.6g} N by more than "
+                          f"{FORCE_SLACK:.0%}: units, symmetry (a quarter model's force x4), "
+                          f"mu or the normal force contradict each other")
+
+
+def _closing_loop(d, q, i1, i2, end):
+    """The closed loop's points (first reversal -> second -> back to d[i1]) or None."""
+    d1 = d[i1]
+    reload = np.arange(i2 + 1, end + 1)
+    past = reload[d[reload] >= d1]
+    if not past.size:
+        return None
+    j = int(past[0])
+    t = (d1 - d[j - 1]) / (d[j] - d[j - 1])
+    loop_d = np.concatenate([d[i1:j], [d1]])
+    loop_q = np.concatenate([q[i1:j], [q[j - 1] + t * (q[j] - q[j - 1])]])
+    return loop_d, loop_q
+
+
+def loop_energy(displacement, force) -> float:
+    """Area [J] of a loop in the (displacement, force) plane, the trapezoid rule of the
+    integral of force d(displacement) around it: positive for a dissipative loop, which
+    unloads below the force it reloads along (counter-clockwise); the closing segment at
+    equal displacement adds nothing."""
+    d, q = np.asarray(displacement, dtype=float), np.asarray(force, dtype=float)
+    return float(np.sum(0.5 * (q[1:] + q[:-1]) * np.diff(d)))
+
+
+# --- the grader -------------------------------------------------------------------------
+
+def grade_tangential(result: TangentialResult, scene,
+                     tolerances: Mapping[str, float] | None = None, *,
+                     hertz_at: Callable | None = None) -> TangentialGrade:
+    """Grade a frictional contact result against Cattaneo-Mindlin and Mindlin-Deresiewicz.
+
+    Parameters
+    ----------
+    result : TangentialResult
+        Any source's result (see :mod:`fem_validation.tangential_result`).
+    scene : object with ``name`` and ``hertz(load) -> hertz.Contact``
+        The two bodies (:class:`fem_validation.scenes.Scene`); body 1 lies on the
+        side the frame's normal points to.
+    tolerances : dict, optional
+        Metric name -> largest allowed |value| (default :data:`DEFAULT_TOLERANCES`;
+        metrics not named are reported as information).
+    hertz_at : callable, optional
+        P [N] -> the Hertz contact to compare with; default ``scene.hertz``.
+
+    Returns
+    -------
+    TangentialGrade
+
+    Raises
+    ------
+    ResultError
+        If the result contradicts itself or the scene (units, symmetry, a force
+        beyond mu P, a scene that does not match): bad input, not a failed grade.
+    ValueError
+        If a tolerance is not allowed.
+
+    Examples
+    --------
+    See docs/howto/grade-friction.md (a result built from Cattaneo-Mindlin itself,
+    graded, then one with mu 2% off).
+    """
+    tol = _tolerances(tolerances, DEFAULT_TOLERANCES, METRICS)
+    where = f"{result.source}: " if result.source else ""
+    c = (scene.hertz if hertz_at is None else hertz_at)(result.normal_force)
+    mu, P = result.mu, float(c.load)
+    limit = mu * P
+    theta = float(c.major_axis_angle)
+    along = result.direction - theta  # the load's angle in the ellipse frame
+    xy = result.xy
+    ct, st = math.cos(theta), math.sin(theta)
+    ellipse_xy = np.column_stack([xy[:, 0] * ct + xy[:, 1] * st, -xy[:, 0] * st + xy[:, 1] * ct])
+    tri = _face_triangles(result, xy)
+    area = lumped_area(xy, tri)
+    _sanity(result, c, xy, area, where)
+    p, q, q_perp = result.pressure, result.shear_along, result.shear_across
+    scale = mu * c.p0
+    notes = []
+
+    # --- the path: ramp, unloading, reloading -------------------------------------------
+    d, path_q = result.displacement, result.force
+    k = len(d)
+    rev = result.reversals
+    i1 = rev[0] if rev else k - 1
+    i2 = rev[1] if len(rev) > 1 else (k - 1 if rev else None)
+    end = rev[2] if len(rev) > 2 else k - 1
+    branch = np.array(["start"] + ["ramp"] * i1 + ["beyond"] * (k - 1 - i1), dtype=object)
+    q_ref = np.full(k, np.nan)
+    ramp = np.arange(1, i1 + 1)
+    ramp = ramp[d[ramp] > 0]
+    q_ref[ramp] = masing_force(c, mu, along, d[ramp])
+    ramp_err = (path_q[ramp] - q_ref[ramp]) / q_ref[ramp]
+    force_err = float(_worst(list(ramp_err))) if ramp.size else math.nan
+    curve_d, curve_q = [np.linspace(0.0, d[i1], 60)], []
+    curve_q.append(masing_force(c, mu, along, curve_d[0]))
+    q1 = float(masing_force(c, mu, along, [d[i1]])[0])
+    branch_err, energy_err, q_star, w_fem, w_ref = math.nan, math.nan, math.nan, math.nan, math.nan
+    if not rev:
+        notes.append("the path never turns back: no unloading or reloading branch, no loop "
+                     "energy")
+    else:
+        unload = np.arange(i1 + 1, i2 + 1)
+        branch[unload] = "unloading"
+        q_ref[unload] = masing_force(c, mu, along, d[unload], [q1])
+        q2 = float(masing_force(c, mu, along, [d[i2]], [q1])[0])
+        curve_d.append(np.linspace(d[i1], d[i2], 60))
+        curve_q.append(masing_force(c, mu, along, curve_d[-1], [q1]))
+        graded = list(unload)
+        if len(rev) > 1:
+            reload = np.arange(i2 + 1, end + 1)
+            branch[reload] = "reloading"
+            q_ref[reload] = masing_force(c, mu, along, d[reload], [q1, q2])
+            curve_d.append(np.linspace(d[i2], d[end], 60))
+            curve_q.append(masing_force(c, mu, along, curve_d[-1], [q1, q2]))
+            graded += list(reload)
+            q_star = 0.5 * float(abs(path_q[i1]) + abs(path_q[i2]))
+            if end < k - 1:
+                notes.append(f"the path turns back a third time (index {end}): the "
+                             f"{k - 1 - end} points after it are not graded")
+        else:
+            q_star = float(abs(path_q[i1]))
+            notes.append("the path has one reversal: the unloading branch is graded, there "
+                         "is no reloading branch and no closed loop (no loop energy)")
+        branch_err = (float(np.abs(path_q[graded] - q_ref[graded]).max() / q_star) if graded
+                      else math.nan)
+        if len(rev) > 1:
+            loop = _closing_loop(d, path_q, i1, i2, end)
+            if loop is None:
+                notes.append(f"the reloading branch stops at displacement {d[end]:.6g} m, "
+                             f"before the first reversal's {d[i1]:.6g} m: the loop is not "
+                             f"closed, no loop energy")
+            else:
+                w_fem = loop_energy(*loop)
+                w_ref = float(c.fretting(min(q_star, limit), mu, along).energy)
+                energy_err = w_fem / w_ref - 1
+                asym = abs(d[i2]) / d[i1] - 1
+                if abs(asym) > 0.01:
+                    notes.append(f"the loop is not symmetric (second reversal at "
+                                 f"{d[i2]:.6g} m, first at {d[i1]:.6g} m): its energy is "
+                                 f"compared with the symmetric loop at the mean amplitude Q*")
+
+    # --- the snapshot: stick zone, traction profiles ------------------------------------
+    snap = result.snapshot
+    q_snap = float(path_q[snap])
+    nan_t = {"stick_a": math.nan, "stick_b": math.nan, "angle_deg": math.nan, "fit_nodes": 0}
+    fit, t, prof = nan_t, None, {}
+    mirrored = _mirror_axes(result.symmetry, xy)
+    if snap > i1:
+        notes.append(f"the snapshot (index {snap}) lies after the first reversal: the "
+                     f"stick zone and the traction profiles are graded on the monotonic ramp "
+                     f"only (Cattaneo-Mindlin); not graded")
+    elif not 0 < q_snap < limit:
+        notes.append(f"the snapshot's tangential force {q_snap:.6g} N is not between 0 and "
+                     f"mu P = {limit:.6g} N (partial slip): no stick zone to grade")
+    else:
+        t = c.tangential(q_snap, mu, along)
+        fit = stick_ellipse(ellipse_xy, p, q, mu, cross_term=result.symmetry == "whole")
+        if not math.isfinite(fit["stick_a"]):
+            notes.append(f"the fit of (mu p - q)^2 on the {fit['fit_nodes']} nodes above "
+                         f"{FIT_THRESHOLD:g} of its largest value is not an ellipse: no stick "
+                         f"semi-axes")
+        ref = SimpleNamespace(a=c.a, b=c.b, p0=scale, major_axis_angle=theta,
+                              pressure=t.traction)
+        prof = pressure_profiles(ref, xy, tri, q, mirrored)
+    s2 = (t.stick_a / c.a) ** 2 if t is not None else math.nan
+    pressed = p > 0
+    stick_area, flagged = math.nan, math.nan
+    if result.stick is not None:
+        flagged = float(area[pressed & result.stick].sum() / area[pressed].sum())
+        if t is not None:
+            stick_area = flagged / s2 - 1
+    shear_integral = result.multiplicity * float(q @ area)
+    metrics = {
+        "stick_a_rel_err": fit["stick_a"] / t.stick_a - 1 if t is not None else math.nan,
+        "stick_b_rel_err": fit["stick_b"] / t.stick_b - 1 if t is not None else math.nan,
+        "force_rel_err_max": force_err, "branch_err_max": branch_err,
+        "loop_energy_rel_err": energy_err,
+        "traction_rms_major": prof["major"]["rms"] if prof else math.nan,
+        "traction_rms_minor": prof["minor"]["rms"] if prof else math.nan,
+        "transverse_shear_max": float(np.abs(q_perp).max()) / scale,
+        "stick_area_rel_err": stick_area,
+        "pressure_integral_rel_err": result.multiplicity * float(p @ area) / P - 1,
+        "shear_integral_rel_err": (shear_integral / q_snap - 1 if q_snap > 0 else math.nan),
+    }
+    checks = _checks(metrics, tol, METRICS)
+    passed = all(ch.status != "fail" for ch in checks)
+    curve_d = np.concatenate(curve_d)
+    curve_q = np.concatenate(curve_q)
+    return TangentialGrade(
+        scene=getattr(scene, "name", ""), source=result.source, normal_force=P, mu=mu,
+        direction=result.direction, symmetry=result.symmetry, metrics=metrics,
+        checks=tuple(checks), passed=passed,
+        reference={"a": c.a, "b": c.b, "p0": c.p0, "alpha": float(c.alpha),
+                   "major_axis_angle_deg": math.degrees(theta),
+                   "direction_in_ellipse_frame_deg": math.degrees(along),
+                   "stick_a": t.stick_a if t is not None else math.nan,
+                   "stick_b": t.stick_b if t is not None else math.nan,
+                   "stick_area_fraction": s2,
+                   "no_slip_stiffness": float(c.tangential_stiffness(along)),
+                   "force_at_first_reversal": q1, "loop_energy": w_ref, "mu_P": limit},
+        fem={"stick_fit": fit, "snapshot": snap, "snapshot_force": q_snap,
+             "snapshot_force_ratio": q_snap / limit, "reversals": list(rev),
+             "amplitude": q_star, "loop_energy": w_fem, "shear_integral": shear_integral,
+             "stick_area_fraction": flagged},
+        profiles=prof,
+        path={"displacement": d, "force": path_q, "reference_force": q_ref,
+              "branch": [str(b) for b in branch], "reference_curve": (curve_d, curve_q)},
+        notes=tuple(notes), details=dict(result.details))
+
+
+# --- the report: grade.json, grade.md, grade.png ----------------------------------------
+
+def _fmt(name: str, value) -> str:
+    if value is None or (isinstance(value, float) and math.isnan(value)):
+        return "-"
+    if value != 0 and abs(value) < 5e-5:  # exact data: show the rounding, not +0.00%
+        return f"{value:+.1e}"
+    if name.startswith("traction_rms") or name in ("branch_err_max", "transverse_shear_max"):
+        return f"{value:.2%}"
+    return f"{value:+.2%}"
+
+
+def grade_markdown(g: TangentialGrade, command: str = "") -> str:
+    """grade.md: what was graded, the method, every check with its tolerance, the verdict."""
+    r, f = g.reference, g.fem
+    failed = [c.name for c in g.checks if c.status == "fail"]
+    lines = [f"# Grade against Cattaneo-Mindlin and Mindlin-Deresiewicz: "
+             f"{'PASSED' if g.passed else 'FAILED'}", "", "## What was graded", ""]
+    if command:
+        lines.append(f"- command: `{command}`")
+    lines += [
+        f"- result: `{g.source or '-'}`; scene: {g.scene}; symmetry of the model: {g.symmetry}",
+        f"- normal force P = {g.normal_force:.6g} N (whole contact), mu = {g.mu:.4g}, load "
+        f"at {math.degrees(g.direction):.4g} deg from body 1's x axis = "
+        f"{r['direction_in_ellipse_frame_deg']:.4g} deg from Hertz's major axis",
+        f"- Hertz at P: a {r['a']:.6g} m, b {r['b']:.6g} m, p0 {r['p0']:.6g} Pa, alpha "
+        f"{r['alpha']:.4g}; no-slip stiffness along the load {r['no_slip_stiffness']:.6g} N/m",
+        f"- snapshot at path index {f['snapshot']}: Q = {f['snapshot_force']:.6g} N = "
+        f"{f['snapshot_force_ratio']:.4g} mu P; Cattaneo-Mindlin's stick semi-axes "
+        f"{r['stick_a']:.6g} m, {r['stick_b']:.6g} m; the result's (fit) "
+        f"{f['stick_fit']['stick_a']:.6g} m, {f['stick_fit']['stick_b']:.6g} m",
+        f"- path: {len(g.path['displacement'])} points, reversals at {f['reversals']}; "
+        f"Q* = {f['amplitude']:.6g} N; loop energy {f['loop_energy']:.6g} J, "
+        f"Mindlin-Deresiewicz's {r['loop_energy']:.6g} J"]
+    if math.isfinite(f["stick_area_fraction"]):
+        lines.append(f"- the code's stick flags cover {f['stick_area_fraction']:.4g} of the "
+                     f"pressed area (Cattaneo-Mindlin: {r['stick_area_fraction']:.4g})")
+    if g.details:
+        lines.append("- details: " + ", ".join(f"{k} = {v}" for k, v in g.details.items()))
+    lines += ["", "## Sign convention", "",
+              "Relative errors are (result - reference) / reference, the reference at the "
+              "result's own normal force (and, for the stick zone and the tractions, at its "
+              "tangential force at the snapshot); the branch error is |Q - Q_ref| / Q*; "
+              "RMS values and the transverse shear are fractions of mu p0.", "",
+              "## Checks", "",
+              "Status: PASS / FAIL against the tolerance (|value| at most the tolerance); "
+              "*information*: reported, not checked; *not available*: the result does not "
+              "hold what it needs (see the notes).", "",
+              "| check | what it measures | value | tolerance | status |",
+              "|---|---|---|---|---|"]
+    for ch in g.checks:
+        header, meaning = METRICS[ch.name]
+        status = ch.status.upper() if ch.passed is not None else ch.status
+        tolerance = "-" if ch.tolerance is None else f"{ch.tolerance:.2%}"
+        lines.append(f"| {header} (`{ch.name}`) | {meaning.replace('|', chr(92) + '|')} | "
+                     f"{_fmt(ch.name, ch.value)} | {tolerance} | {status} |")
+    if g.notes:
+        lines += ["", "## Notes", ""] + [f"- {n}" for n in g.notes]
+    lines += ["", "## Verdict", "",
+              ("PASSED: every checked metric is within its tolerance." if g.passed else
+               f"FAILED: {', '.join(failed)} outside the tolerance."),
+              "", "## Method", "",
+              "See `fem_validation.grade_tangential`: the stick semi-axes from a least-squares "
+              "fit of (mu p - q)^2 on the nodes where mu p - q exceeds "
+              f"{FIT_THRESHOLD:g} of its largest value; the reference force along the "
+              "result's displacement path by Masing's rule with memory "
+              "(`hertz.tangential_history` inverted by bisection); the loop energy by the "
+              "trapezoid rule; the tractions interpolated on the surface triangles along "
+              "Hertz's axes. That slipping nodes carry |q| = mu p is not reported: a Coulomb "
+              "solver holds it by construction."]
+    return "\n".join(lines) + "\n"
+
+
+def plot_grade(g: TangentialGrade, path: Path) -> Path:
+    """grade.png: traction profiles along both axes against Cattaneo-Mindlin, the
+    force-displacement loop against Masing, and the checks."""
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    fig, axes = plt.subplots(2, 2, figsize=(13, 9))
+    r = g.reference
+    scale = g.mu * r["p0"]
+    for ax, name, semi in zip(axes[0], ("major", "minor"), (r["a"], r["b"]), strict=True):
+        d = g.profiles.get(name)
+        if d is not None:
+            ax.plot(d["s"] / semi, d["hertz"] / scale, "-", color="k",
+                    label="Cattaneo-Mindlin at the snapshot's Q")
+            ax.plot(d["s"] / semi, d["fem"] / scale, "o", ms=3, color="C3",
+                    label=f"result, interpolated (RMS {d['rms']:.1%} of mu p0)")
+            s = d["s"] / semi
+            ax.plot(s, np.sqrt(np.clip(1 - s * s, 0, None)), ":", color="0.5",
+                    label="mu p (Hertz): the limit of friction")
+            key = "stick_a" if name == "major" else "stick_b"
+            ax.axvline(r[key] / semi, color="k", lw=0.8, ls="--",
+                       label=f"stick edge, Cattaneo-Mindlin ({r[key] / semi:.4f})")
+            fitted = g.fem["stick_fit"][key]
+            if math.isfinite(fitted):
+                ax.axvline(fitted / semi, color="C3", lw=0.8, ls=":",
+                           label=f"stick edge, fit to the result ({fitted / semi:.4f})")
+            ax.legend(fontsize=7, loc="lower center")
+        else:
+            ax.text(0.5, 0.5, "not graded (see the notes)", ha="center", transform=ax.transAxes)
+        ax.set_xlabel(f"distance along Hertz's {name} axis / Hertz's "
+                      f"{'a' if name == 'major' else 'b'}")
+        ax.set_ylabel("shear along the load / (mu p0)")
+        ax.set_title(f"tangential traction along the {name} axis", fontsize=9)
+        ax.grid(True, alpha=0.3)
+    ax = axes[1, 0]
+    cd, cq = g.path["reference_curve"]
+    ax.plot(np.asarray(cd) * 1e6, np.asarray(cq) / (g.mu * g.normal_force), "-", color="k",
+            label="Mindlin-Deresiewicz (Masing's rule) along the result's path")
+    ax.plot(np.asarray(g.path["displacement"]) * 1e6,
+            np.asarray(g.path["force"]) / (g.mu * g.normal_force), "o-", ms=3, lw=0.8,
+            color="C3", label="result")
+    ax.set_xlabel("tangential displacement [um]")
+    ax.set_ylabel("Q / (mu P)")
+    ax.set_title("force against displacement", fontsize=9)
+    ax.grid(True, alpha=0.3)
+    ax.legend(fontsize=7)
+    ax = axes[1, 1]
+    checked = [c for c in g.checks if c.tolerance is not None and c.passed is not None]
+    ax.barh(range(len(checked)), [abs(c.value) / c.tolerance for c in checked],
+            color=["C2" if c.passed else "C3" for c in checked])
+    ax.axvline(1.0, color="k", lw=1)
+    ax.set_yticks(range(len(checked)))
+    ax.set_yticklabels([f"{c.name} = {_fmt(c.name, c.value)} (tol {c.tolerance:.2%})"
+                        for c in checked], fontsize=7)
+    ax.invert_yaxis()
+    ax.set_xlabel("|value| / tolerance (1 = the limit)")
+    ax.set_title("checks (green pass, red fail)", fontsize=9)
+    fig.suptitle(f"{g.source or g.scene} against Cattaneo-Mindlin / Mindlin-Deresiewicz "
+                 f"({g.scene}): {'PASSED' if g.passed else 'FAILED'}; P = "
+                 f"{g.normal_force:.5g} N, mu = {g.mu:.3g}, load at "
+                 f"{r['direction_in_ellipse_frame_deg']:.3g} deg from the major axis, "
+                 f"{g.symmetry} model", fontsize=9)
+    fig.tight_layout()
+    fig.savefig(path, dpi=110)
+    plt.close(fig)
+    return path
+
+
+def write_grade(g: TangentialGrade, out, command: str = "") -> tuple[Path, Path, Path]:
+    """DIR/grade.json, DIR/grade.md and DIR/grade.png of a TangentialGrade (DIR created)."""
+    import json
+
+    out = Path(out)
+    out.mkdir(parents=True, exist_ok=True)
+    paths = out / "grade.json", out / "grade.md", out / "grade.png"
+    row = g.to_dict()
+    if command:
+        row["command"] = command
+    paths[0].write_text(json.dumps(row, indent=1, default=float))
+    paths[1].write_text(grade_markdown(g, command))
+    plot_grade(g, paths[2])
+    return paths
