@@ -9,6 +9,7 @@
     python -m fem_validation --curved --levels 3 4 --out DIR  # two levels, one table
     python -m fem_validation grade RESULT --scene FILE.toml --out DIR   # another code's result
     python -m fem_validation deck --scene FILE.toml --format calculix --out DIR  # a deck for one
+    python -m fem_validation friction --out DIR   # Coulomb friction against Cattaneo-Mindlin
 
 Writes DIR/report.json, DIR/report.md, <scene>_body1.vtu, <scene>_body2.vtu and
 <scene>_pressure.png per scene (a study writes study.json, study.md and
@@ -18,7 +19,8 @@ tables of the documentation (docs/explanation/fem-model.md, curved-bodies.md)
 and docs/fem/*.png.  Errors (usage, conflicting flags, an
 --out that cannot be written, an alpha the meshes do not support, --readme
 outside a checkout) print one line on stderr and exit with status 2, before
-anything runs.  ``grade``: see :mod:`fem_validation.grade_cli`.
+anything runs.  ``grade``: see :mod:`fem_validation.grade_cli`; ``friction``: see
+:mod:`fem_validation.friction_cli`.
 """
 
 from __future__ import annotations
@@ -176,6 +178,10 @@ def main(argv=None) -> int:
     argv = sys.argv[1:] if argv is None else list(argv)
     if argv[:1] == ["deck"]:
         return _deck(argv)
+    if argv[:1] == ["friction"]:
+        from .friction_cli import main as friction_main
+
+        return friction_main(argv[1:])
     if argv[:1] == ["grade"]:
         from .grade_cli import main as grade_main
 
