@@ -1,0 +1,435 @@
+"""Mindlin-Deresiewicz beyond constant normal load: a Hertz contact driven along any
+sequence of (normal force, tangential force) pairs, the force along a principal axis.
+
+The model (Mindlin's problem class)
+-----------------------------------
+Mindlin's uncoupled solution, as in :mod:`hertz._tangential`: the pressure is Hertz's
+whatever the tangential traction (Goodman's coupling of dissimilar materials neglected,
+see :func:`hertz.dundurs_beta`), the slip is taken parallel to the force, Coulomb's
+law with one coefficient mu.  Frame: x along the major semi-axis a, y along the
+minor semi-axis b; the force along x (``direction = 0``) or along y (``pi/2``).
+
+Why a one-dimensional memory is exact (Jaeger's superposition principle)
+------------------------------------------------------------------------
+A "Cattaneo distribution" of size c is the traction t(x, y) = t0 sqrt(1 - x^2/c^2 -
+y^2/(c b/a)^2) along a principal axis on the ellipse of semi-axes (c, c b/a), similar to
+the contact ellipse.  It displaces every point of its own ellipse by the same amount
+along the force with no transverse part (checked by Cerruti quadrature,
+/work/shared/REFERENCES.md "Tangential contact"; Mindlin 1949 for the circle,
+Deresiewicz 1957 for the ellipse).  Its force is (2 pi/3) t0 c^2 b/a, and a
+distribution of size a with t0 = mu p0 is the sliding traction mu p, which displaces
+the ellipse by 3 mu P / (2 k), k the no-slip stiffness along the force
+(:func:`hertz.tangential_compliance`); since k grows as a and P as a^3, the
+displacement of size c is t0 c (pi b / a) / (k / a).
+
+Every traction met along a (P, Q) path is a superposition of such distributions of
+sizes c in [0, a] (Jaeger, J. Elasticity 1995 / Acta Mech. 1997, for the circle;
+the same argument holds on the family of similar ellipses because each distribution
+displaces its own ellipse rigidly).  Written with a line load q(c) over the size
+c in [-a, a], the distribution of size c0 is q = beta (c0^2 - c^2)_+ (force
+(4/3) beta c0^3, uniform displacement beta c0^2 / k1 with k1 = k / (2 a)), so the
+traction history is carried by a one-dimensional bed of independent springs of
+stiffness k1 per unit length (for the circle this is Popov and Hess's method of
+dimensionality reduction, MDR, "Method of Dimensionality Reduction in Contact
+Mechanics and Friction", Springer 2015, ch. 4 and 7; Aleshin & Van Den Abeele,
+J. Mech. Phys. Solids 55 (2007) 765, solved arbitrary (P, Q) paths of spheres the same
+way with "memory diagrams"):
+
+* the normal line load is n(c) = (3 P / (4 a^3)) (a^2 - c^2) (its integral is P and
+  it maps to the Hertz pressure);
+* each spring in contact (|c| < a) carries u(c) k1; it sticks (u moves with the rigid
+  tangential displacement delta of the contact) while |u k1| < mu n(c) and slides at
+  u k1 = +-mu n(c) otherwise;
+* springs leaving the contact (a shrinks) lose their force; springs entering (a grows)
+  start at zero force;
+* Q = integral of k1 u over the contact; delta = u of the springs that stick.
+
+At constant P this is Cattaneo-Mindlin and Masing with memory (tangential_history),
+with Q and P rising in proportion it is Mindlin-Deresiewicz's oblique loading
+(proportional_loading); the stick zone is the similar ellipse through the innermost
+spring that slides.
+
+Exact solution of the spring bed, and what a step is
+----------------------------------------------------
+Scaled by a_ref, the contact at the largest normal force P_ref of the path, and by
+U = 3 mu P_ref / (2 k_ref) (k_ref the no-slip stiffness at P_ref), the spring limit is
+L(x) = alpha^2 - x^2 with alpha = a / a_ref = (P / P_ref)^(1/3), and Q / (mu P_ref) =
+(3/2) int_0^alpha u dx.  Every state met is piecewise of the form u = A + B x^2 (the
+limit is, and so are the states below), so it is held exactly as breakpoints and
+coefficients; nothing is discretised in c.
+
+Between two points of the path the relative displacement delta is taken to change
+monotonically and in proportion to a^2 (that is to P^(2/3)) wherever P changes.  The
+limit L(x) is linear in a^2 too, so the stick/slip of every spring over the step is
+decided exactly by its state at the end of the step: a spring in contact becomes
+clip(u + d_delta, -L, L) (u - L is linear along the step, its extreme is at an end), a
+spring entering at size x (when a^2 = x^2) clip(d_delta (a1^2 - x^2) / (a1^2 - a0^2),
+-L, L).  d_delta is the root of the (continuous, nondecreasing) force; Brent's method,
+then one Newton step on the exact slope.  Paths this is exact for, whatever the
+length of the step: constant P (any Q: Masing), constant Q (P rising or falling
+monotonically), Q/P fixed from zero (proportional), and any path on which delta is
+linear in P^(2/3) between the points.  For another path (say Q linear in P at a ratio
+that slips) insert points: the error falls with the step (tests/test_load_path.py
+measures the rate).
+
+Closed forms (Mindlin & Deresiewicz 1953; derived here from the spring bed, checked
+against mpmath at 50 digits in tests/reference_load_path.py)
+------------------------------------------------------------
+delta_C(P, Q) = 3 mu P / (2 k(P)) [1 - (1 - Q/(mu P))^(2/3)] is Cattaneo-Mindlin.
+
+* From (P0, Q) reached by Q at constant P0, P raised to P1 at constant Q: nothing
+  changes (delta stays delta_C(P0, Q)); the new ring carries no traction, no slip.
+  Then Q raised by dQ at P1: while dQ <= mu (P1 - P0), delta = delta_C(P0, Q) +
+  delta_C(P1, dQ) (a slip annulus grows from the edge into the new ring); beyond,
+  delta = delta_C(P1, Q + dQ), the virgin state at P1 (all memory lost).
+* From (P0, Q) reached by Q at constant P0, P lowered to P1 at constant Q (Q < mu P1):
+  the state is the virgin Cattaneo-Mindlin state of (P1, Q): delta = delta_C(P1, Q),
+  stick ellipse a1 (1 - Q/(mu P1))^(1/3); the slip annulus grows at the edge.
+* Q/P = r < mu fixed from zero: delta = 3 Q / (2 k(P)), nothing slips.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+
+from ._tangential import _mu, tangential_stiffness
+from ._validate import as_float_array, error_at, first_failure
+
+__all__ = ["LoadPath", "load_path"]
+
+
+@dataclass(frozen=True, slots=True)
+class LoadPath:
+    """A Hertz contact driven along a path of normal and tangential forces.
+
+    One entry per point of the path (shape (n,)).  The force acts along a principal
+    axis of the contact ellipse (``direction`` 0: the major axis a, pi/2: the minor
+    axis b).  Mindlin's uncoupled solution (see :func:`load_path`).
+
+    Attributes
+    ----------
+    normal_force : ndarray
+        P [N].
+    tangential_force : ndarray
+        Q [N] along the axis (negative: the opposite way), |Q| <= mu P.
+    displacement : ndarray
+        Relative tangential displacement of distant points of the two bodies along the
+        axis [m] (body 1 relative to body 2), 0 at the unloaded start.  At |Q| = mu P
+        it is the displacement at which the contact starts to slide as a whole.
+    a, b : ndarray
+        Semi-axes of the contact ellipse at P [m] (0 where P = 0).
+    stick_a, stick_b : ndarray
+        Semi-axes [m] of the stick ellipse: the largest ellipse similar to the contact
+        ellipse inside which nothing slipped during the step to this point.  (a, b)
+        when nothing slipped (for example P raised at fixed Q), 0 when the whole
+        contact slides or P = 0.
+    sliding : ndarray of bool
+        Whether |Q| = mu P: the whole contact slides.
+    mu : float
+        Coefficient of friction [-].
+    direction : float
+        Angle of the force from the major axis [rad], 0 or pi/2.
+    """
+
+    normal_force: np.ndarray
+    tangential_force: np.ndarray
+    displacement: np.ndarray
+    a: np.ndarray
+    b: np.ndarray
+    stick_a: np.ndarray
+    stick_b: np.ndarray
+    sliding: np.ndarray
+    mu: float
+    direction: float
+
+
+class _SpringBed:
+    """The scaled spring bed of the module docstring: u = A + B x^2 on the pieces
+    [edges[j], edges[j + 1]] of [0, alpha]; the limit is alpha^2 - x^2."""
+
+    def __init__(self):
+        self.edges = np.zeros(1)
+        self.A = np.zeros(0)
+        self.B = np.zeros(0)
+        self.alpha = 0.0
+
+    # A step: d_delta moves the trial state u + d_delta * (wa + wb x^2) of each piece
+    def _prepare(self, alpha1):
+        edges, A, B = self.edges, self.A, self.B
+        alpha0 = self.alpha
+        if alpha1 < alpha0:  # springs beyond alpha1 leave the contact
+            keep = edges[:-1] < alpha1
+            A, B = A[keep], B[keep]
+            edges = np.append(edges[:-1][keep], alpha1)
+        wa = np.ones(A.size)
+        wb = np.zeros(A.size)
+        if alpha1 > alpha0:  # springs entering: d_delta (a1^2 - x^2) / (a1^2 - a0^2)
+            d = (alpha1 - alpha0) * (alpha1 + alpha0)
+            edges = np.append(edges, alpha1)
+            A, B = np.append(A, 0.0), np.append(B, 0.0)
+            wa, wb = np.append(wa, alpha1 * alpha1 / d), np.append(wb, -1.0 / d)
+        return edges, A, B, wa, wb
+
+    @staticmethod
+    def _split(edges, ta, tb, a2):
+        """Sub-intervals of each piece where the trial u = ta + tb x^2 is above the limit
+        a2 - x^2 (regime +1), below its negative (-1) or between (0): x (n, 4) and the
+        regime of the 3 sub-intervals (n, 3)."""
+        lo, hi = edges[:-1], edges[1:]
+        with np.errstate(divide="ignore", invalid="ignore"):
+            s_up = (a2 - ta) / (tb + 1.0)  # ta + tb s = a2 - s
+            s_lo = -(a2 + ta) / (tb - 1.0)  # ta + tb s = -(a2 - s)
+            x_up = np.sqrt(s_up)
+            x_lo = np.sqrt(s_lo)
+        x_up = np.where(np.isfinite(x_up), np.clip(x_up, lo, hi), lo)
+        x_lo = np.where(np.isfinite(x_lo), np.clip(x_lo, lo, hi), lo)
+        x = np.sort(np.stack([lo, x_up, x_lo, hi], axis=1), axis=1)
+        mid = 0.5 * (x[:, 1:] + x[:, :-1])
+        s = mid * mid
+        trial = ta[:, None] + tb[:, None] * s
+        limit = a2 - s
+        regime = np.where(trial > limit, 1, np.where(trial < -limit, -1, 0))
+        return x, regime
+
+    @staticmethod
+    def _integral(x0, x1, c0, c2):
+        """int_x0^x1 (c0 + c2 x^2) dx."""
+        w = x1 - x0
+        return w * (c0 + c2 * (x1 * x1 + x1 * x0 + x0 * x0) / 3.0)
+
+    def _force(self, prepared, alpha1, delta):
+        """(Q / (mu P_ref), d/d(delta) of it) for the increment ``delta``."""
+        edges, A, B, wa, wb = prepared
+        a2 = alpha1 * alpha1
+        ta, tb = A + delta * wa, B + delta * wb
+        x, regime = self._split(edges, ta, tb, a2)
+        c0 = np.where(regime == 0, ta[:, None], regime * a2)
+        c2 = np.where(regime == 0, tb[:, None], -regime * 1.0)
+        total = self._integral(x[:, :-1], x[:, 1:], c0, c2).sum()
+        stuck = regime == 0
+        slope = np.where(stuck, self._integral(x[:, :-1], x[:, 1:], wa[:, None], wb[:, None]),
+                         0.0).sum()
+        return 1.5 * total, 1.5 * slope
+
+    def _bracket(self, prepared, alpha1):
+        """The increments beyond which every spring slides forwards (backwards)."""
+        edges, A, B, wa, wb = prepared
+        a2 = alpha1 * alpha1
+        old = wb == 0.0
+        ends = np.concatenate([edges[:-1][old], edges[1:][old]])
+        ae = np.concatenate([A[old], A[old]])
+        be = np.concatenate([B[old], B[old]])
+        s = ends * ends
+        up = a2 - s - (ae + be * s)  # what each old spring needs to reach +L
+        down = -(a2 - s) - (ae + be * s)
+        d = (alpha1 - self.alpha) * (alpha1 + self.alpha) if alpha1 > self.alpha else 0.0
+        hi = max(up.max(initial=0.0), d)
+        lo = min(down.min(initial=0.0), -d)
+        return lo, hi
+
+    def step(self, alpha1, target, sense):
+        """Move to contact size alpha1 and force ``target`` = Q / (mu P_ref); ``sense``
+        = +1 / -1 if |Q| = mu P (the whole contact slides that way), else 0.  Returns the
+        displacement increment and the innermost x that slid (alpha1 if none)."""
+        if alpha1 == 0.0:  # no contact: nothing carries or remembers a tangential force
+            self.edges, self.A, self.B, self.alpha = np.zeros(1), np.zeros(0), np.zeros(0), 0.0
+            return 0.0, 0.0
+        prepared = self._prepare(alpha1)
+        lo, hi = self._bracket(prepared, alpha1)
+        if sense > 0:
+            delta = hi
+        elif sense < 0:
+            delta = lo
+        else:
+            f_lo = self._force(prepared, alpha1, lo)[0]
+            f_hi = self._force(prepared, alpha1, hi)[0]
+            if target >= f_hi:  # rounding of Q / (mu P_ref) against alpha^3
+                delta = hi
+            elif target <= f_lo:
+                delta = lo
+            else:
+                from scipy.optimize import brentq
+
+                delta = brentq(lambda d: self._force(prepared, alpha1, d)[0] - target, lo, hi,
+                               xtol=1e-300, rtol=8.9e-16, maxiter=400)
+                value, slope = self._force(prepared, alpha1, delta)
+                if slope > 0.0:  # one Newton step on the exact slope
+                    polished = delta - (value - target) / slope
+                    if lo <= polished <= hi and (abs(self._force(prepared, alpha1, polished)[0]
+                                                     - target) <= abs(value - target)):
+                        delta = polished
+        self._commit(prepared, alpha1, delta)
+        return delta, self._front
+
+    def _commit(self, prepared, alpha1, delta):
+        edges, A, B, wa, wb = prepared
+        a2 = alpha1 * alpha1
+        ta, tb = A + delta * wa, B + delta * wb
+        x, regime = self._split(edges, ta, tb, a2)
+        c0 = np.where(regime == 0, ta[:, None], regime * a2).reshape(-1)
+        c2 = np.where(regime == 0, tb[:, None], -regime * 1.0).reshape(-1)
+        left, right = x[:, :-1].reshape(-1), x[:, 1:].reshape(-1)
+        slid = regime.reshape(-1) != 0
+        width = right > left
+        self._front = float(left[slid & width].min()) if np.any(slid & width) else alpha1
+        keep = width
+        left, c0, c2 = left[keep], c0[keep], c2[keep]
+        # merge neighbours with the same coefficients (the stretches that slid)
+        new = np.ones(left.size, dtype=bool)
+        new[1:] = (c0[1:] != c0[:-1]) | (c2[1:] != c2[:-1])
+        self.edges = np.append(left[new], alpha1)
+        self.A, self.B = c0[new], c2[new]
+        self.alpha = alpha1
+
+
+def _forces(normal_forces, tangential_forces, mu):
+    P = as_float_array(normal_forces, "normal_forces")
+    shear = as_float_array(tangential_forces, "tangential_forces")
+    for name, arr in (("normal_forces", P), ("tangential_forces", shear)):
+        if arr.ndim != 1 or arr.size == 0:
+            raise ValueError(f"{name} must be a one-dimensional array of at least one force "
+                             f"in N (one per point of the path), got shape {arr.shape}")
+    if P.shape != shear.shape:
+        raise ValueError("normal_forces and tangential_forces must have the same length (one "
+                         f"pair per point of the path), got {P.size} and {shear.size}")
+    ok = (P >= 0) & (P < math.inf)
+    if not ok.all():
+        raise error_at("normal_forces", P, first_failure(ok), "a non-negative, finite force in N")
+    ok = np.isfinite(shear)
+    if not ok.all():
+        raise error_at("tangential_forces", shear, first_failure(ok), "a finite force in N")
+    ok = np.abs(shear) <= mu * P
+    if not ok.all():
+        i = first_failure(ok)
+        raise ValueError(
+            f"tangential_forces must satisfy |Q| <= mu * P at every point, got {shear[i]!r} N "
+            f"against mu * normal_forces = {mu * P[i]!r} N at index {i}: beyond the limit of "
+            "friction the contact slides as a whole and the force cannot be held (at "
+            "|Q| = mu P the result reports sliding)")
+    return P, shear
+
+
+def _direction(direction):
+    d = as_float_array(direction, "direction")
+    if d.ndim != 0 or not (float(d) == 0.0 or float(d) == math.pi / 2):
+        raise ValueError(
+            f"direction must be 0.0 (the major axis) or math.pi / 2 (the minor axis), got "
+            f"{direction!r}: Mindlin's construction (stick zones similar to the contact "
+            "ellipse, slip parallel to the force) is exact only along a principal axis; in "
+            "another direction the displacement turns towards the major axis and the stick "
+            "zone is not similar to the contact ellipse")
+    return float(d)
+
+
+def load_path(body1, body2, normal_forces, tangential_forces, mu, angle=0.0, direction=0.0):
+    """Tangential displacement and stick zone of a Hertz contact along a path of normal
+    and tangential forces (Mindlin & Deresiewicz, any order of changes).
+
+    The contact starts unloaded (P = Q = 0, displacement 0) and passes through the
+    points (P_k, Q_k) in order.  Between two points the displacement is taken to change
+    monotonically and in proportion to P^(2/3) where P changes; this makes every step
+    exact at constant P (Masing's rule with memory, as :func:`hertz.tangential_history`),
+    at constant Q (P rising: nothing changes; P falling: the slip annulus grows from the
+    edge) and for Q/P fixed from zero (as :func:`hertz.proportional_loading`).  For
+    other paths between the given points (for example Q rising faster than mu P), give
+    more points: the result converges to the path's own as the steps shrink.
+
+    Mindlin's uncoupled solution: Hertz's pressure whatever the tangential traction
+    (Goodman's coupling of dissimilar materials neglected; :func:`hertz.dundurs_beta`
+    gives its size), slip taken parallel to the force (Mindlin's approximation in the
+    slip annulus).  The traction is kept as a superposition of Cattaneo distributions
+    on ellipses similar to the contact ellipse, each of which moves its ellipse
+    rigidly: along a principal axis this is exact for any path, with a one-dimensional
+    memory of the traction over the size of the ellipse (module docstring of
+    ``hertz._load_path``, with the derivation and the sources).
+
+    Parameters
+    ----------
+    body1, body2 : Body
+        The bodies, as :func:`hertz.contact` takes them.
+    normal_forces : array_like, shape (n,)
+        P_k [N], >= 0.  P = 0 separates the bodies: the tangential memory is lost.
+    tangential_forces : array_like, shape (n,)
+        Q_k [N] along ``direction`` (negative: the opposite way); |Q_k| <= mu P_k.
+        |Q_k| = mu P_k is sliding of the whole contact.
+    mu : float
+        Coefficient of friction [-], > 0.
+    angle : float
+        Angle between the bodies' principal planes [rad], as :func:`hertz.contact`.
+    direction : {0.0, math.pi / 2}
+        The force's line: the major axis a (0) or the minor axis b (pi/2) [rad].
+
+    Returns
+    -------
+    LoadPath
+        Per point: displacement [m] along the force, contact and stick semi-axes [m],
+        sliding.
+
+    Raises
+    ------
+    ValueError
+        mu not positive and finite; a force not finite; P < 0; |Q| > mu P (index
+        given); arrays not one-dimensional or of different lengths; ``direction`` not
+        0 or pi/2.
+
+    Notes
+    -----
+    The displacement after P = 0 keeps its last value (the bodies part; a new contact
+    starts from that position).
+
+    Examples
+    --------
+    Mindlin & Deresiewicz's two cases: the normal force raised, then lowered, under a
+    fixed tangential force.
+
+    >>> import hertz
+    >>> ball = hertz.Body.sphere(0.01, E=210e9, nu=0.3)
+    >>> plane = hertz.Body.plane(E=210e9, nu=0.3)
+    >>> path = hertz.load_path(ball, plane, [100.0, 100.0, 150.0, 60.0],
+    ...                        [0.0, 15.0, 15.0, 15.0], mu=0.3)
+    >>> bool(path.displacement[2] == path.displacement[1])  # P up: nothing moves
+    True
+    >>> t = hertz.contact(ball, plane, load=60.0).tangential(15.0, mu=0.3)
+    >>> print(f"{path.displacement[3] / t.displacement:.12f}")  # P down: Cattaneo at 60 N
+    1.000000000000
+    >>> print(f"{path.stick_a[3] / t.stick_a:.12f}")
+    1.000000000000
+    """
+    from ._contact import contact as _contact
+
+    mu = float(_mu(mu)) if np.ndim(mu) == 0 else None
+    if mu is None:
+        raise ValueError("mu must be a single positive, finite coefficient of friction for "
+                         "the whole path")
+    direction = _direction(direction)
+    P, shear = _forces(normal_forces, tangential_forces, mu)
+    n = P.size
+    p_ref = float(P.max())
+    zeros = np.zeros(n)
+    if p_ref == 0.0:  # never in contact (Q = 0 throughout by |Q| <= mu P)
+        return LoadPath(P, shear, zeros, zeros, zeros.copy(), zeros.copy(), zeros.copy(),
+                        np.zeros(n, dtype=bool), mu, direction)
+    ref = _contact(body1, body2, load=p_ref, angle=angle)
+    a_ref, b_ref = float(ref.a), float(ref.b)
+    reach = 1.5 * mu * p_ref / float(tangential_stiffness(ref, direction))  # U
+    alpha = np.cbrt(P / p_ref)
+    target = shear / (mu * p_ref)
+    sense = np.where(np.abs(shear) == mu * P, np.sign(shear), 0.0)
+    sense[P == 0.0] = 0.0
+    bed = _SpringBed()
+    delta = 0.0
+    disp = np.empty(n)
+    front = np.empty(n)
+    for k in range(n):
+        step, front[k] = bed.step(float(alpha[k]), float(target[k]), float(sense[k]))
+        delta += step
+        disp[k] = delta
+    sliding = sense != 0.0
+    front[sliding] = 0.0
+    a = alpha * a_ref
+    b = alpha * b_ref
+    return LoadPath(P, shear, reach * disp, a, b, front * a_ref, front * b_ref, sliding, mu,
+                    direction)
