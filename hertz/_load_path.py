@@ -244,25 +244,43 @@ class _SpringBed:
         elif sense < 0:
             delta = lo
         else:
-            f_lo = self._force(prepared, alpha1, lo)[0]
-            f_hi = self._force(prepared, alpha1, hi)[0]
-            if target >= f_hi:  # rounding of Q / (mu P_ref) against alpha^3
+            top = alpha1 * alpha1 * alpha1  # |force| with every spring at its limit
+            if target >= top:  # rounding of Q / (mu P_ref) against alpha^3
                 delta = hi
-            elif target <= f_lo:
+            elif target <= -top:
                 delta = lo
             else:
-                from scipy.optimize import brentq
-
-                delta = brentq(lambda d: self._force(prepared, alpha1, d)[0] - target, lo, hi,
-                               xtol=1e-300, rtol=8.9e-16, maxiter=400)
-                value, slope = self._force(prepared, alpha1, delta)
-                if slope > 0.0:  # one Newton step on the exact slope
-                    polished = delta - (value - target) / slope
-                    if lo <= polished <= hi and (abs(self._force(prepared, alpha1, polished)[0]
-                                                     - target) <= abs(value - target)):
-                        delta = polished
+                delta = self._solve(prepared, alpha1, target, lo, hi)
         self._commit(prepared, alpha1, delta)
         return delta, self._front
+
+    def _solve(self, prepared, alpha1, target, lo, hi):
+        """The increment whose force is ``target`` (strictly between the forces at ``lo``
+        and ``hi``): Newton's method on the exact slope, kept in a bracket that a
+        bisection step shrinks whenever Newton would leave it."""
+        x = min(max(0.0, lo), hi)
+        best, best_miss = x, math.inf
+        for _ in range(200):
+            value, slope = self._force(prepared, alpha1, x)
+            miss = value - target
+            if abs(miss) < best_miss:
+                best, best_miss = x, abs(miss)
+            if miss == 0.0:
+                break
+            if miss > 0.0:
+                hi = x
+            else:
+                lo = x
+            step = x - miss / slope if slope > 0.0 else math.nan
+            if not lo < step < hi:
+                step = 0.5 * (lo + hi)
+            if abs(step - x) <= 4e-16 * max(abs(step), abs(x)) or not lo < step < hi:
+                value = self._force(prepared, alpha1, step)[0] if lo <= step <= hi else value
+                if abs(value - target) < best_miss:
+                    best = step
+                break
+            x = step
+        return best
 
     def _commit(self, prepared, alpha1, delta):
         edges, A, B, wa, wb = prepared
@@ -305,9 +323,10 @@ def _forces(normal_forces, tangential_forces, mu):
     if not ok.all():
         i = first_failure(ok)
         raise ValueError(
-            f"tangential_forces must satisfy |Q| <= mu * P at every point, got {shear[i]!r} N "
-            f"against mu * normal_forces = {mu * P[i]!r} N at index {i}: beyond the limit of "
-            "friction the contact slides as a whole and the force cannot be held (at "
+            "tangential_forces must satisfy |Q| <= mu * P at every point, got "
+            f"{float(shear[i])!r} N against mu * normal_forces = {float(mu * P[i])!r} N at "
+            f"index {i}: beyond the limit of friction the contact slides as a whole and the "
+            "force cannot be held (at "
             "|Q| = mu P the result reports sliding)")
     return P, shear
 
