@@ -14,26 +14,28 @@ Why a one-dimensional memory is exact (Jaeger's superposition principle)
 A "Cattaneo distribution" of size c is the traction t(x, y) = t0 sqrt(1 - x^2/c^2 -
 y^2/(c b/a)^2) along a principal axis on the ellipse of semi-axes (c, c b/a), similar to
 the contact ellipse.  It displaces every point of its own ellipse by the same amount
-along the force with no transverse part (checked by Cerruti quadrature,
-/work/shared/REFERENCES.md "Tangential contact"; Mindlin 1949 for the circle,
-Deresiewicz 1957 for the ellipse).  Its force is (2 pi/3) t0 c^2 b/a, and a
-distribution of size a with t0 = mu p0 is the sliding traction mu p, which displaces
+along the force with no transverse part (Mindlin 1949 for the circle, Deresiewicz 1957
+for the ellipse; checked by a quadrature of Cerruti's solution in
+tests/test_tangential.py and tests/test_load_path.py).  Its force is (2 pi/3) t0 c^2 b/a,
+and a distribution of size a with t0 = mu p0 is the sliding traction mu p, which displaces
 the ellipse by 3 mu P / (2 k), k the no-slip stiffness along the force
 (:func:`hertz.tangential_compliance`); since k grows as a and P as a^3, the
 displacement of size c is t0 c (pi b / a) / (k / a).
 
 Every traction met along a (P, Q) path is a superposition of such distributions of
-sizes c in [0, a] (Jaeger, J. Elasticity 1995 / Acta Mech. 1997, for the circle;
-the same argument holds on the family of similar ellipses because each distribution
-displaces its own ellipse rigidly).  Written with a line load q(c) over the size
-c in [-a, a], the distribution of size c0 is q = beta (c0^2 - c^2)_+ (force
-(4/3) beta c0^3, uniform displacement beta c0^2 / k1 with k1 = k / (2 a)), so the
+sizes c in [0, a] (Jaeger's superposition principle, "A new principle in contact
+mechanics", J. Tribol. 120 (1998) 677, and Ciavarella, Int. J. Solids Struct. 35 (1998),
+for the circle and plane contacts; the same argument holds on the family of similar
+ellipses because each distribution displaces its own ellipse rigidly).  Written with a
+line load q(c) over the size c in [-a, a], the distribution of size c0 is
+q = beta (c0^2 - c^2)_+ (force (4/3) beta c0^3, uniform displacement beta c0^2 / k1 with
+k1 = k / (2 a)), so the
 traction history is carried by a one-dimensional bed of independent springs of
 stiffness k1 per unit length (for the circle this is Popov and Hess's method of
 dimensionality reduction, MDR, "Method of Dimensionality Reduction in Contact
-Mechanics and Friction", Springer 2015, ch. 4 and 7; Aleshin & Van Den Abeele,
-J. Mech. Phys. Solids 55 (2007) 765, solved arbitrary (P, Q) paths of spheres the same
-way with "memory diagrams"):
+Mechanics and Friction", Springer 2015; Aleshin and Van Den Abeele's "method of memory
+diagrams", J. Mech. Phys. Solids 2007, solves arbitrary (P, Q) paths of spheres the
+same way):
 
 * the normal line load is n(c) = (3 P / (4 a^3)) (a^2 - c^2) (its integral is P and
   it maps to the Hertz pressure);
@@ -62,15 +64,25 @@ Between two points of the path the relative displacement delta is taken to chang
 monotonically and in proportion to a^2 (that is to P^(2/3)) wherever P changes.  The
 limit L(x) is linear in a^2 too, so the stick/slip of every spring over the step is
 decided exactly by its state at the end of the step: a spring in contact becomes
-clip(u + d_delta, -L, L) (u - L is linear along the step, its extreme is at an end), a
+clip(u + d_delta, -L, L) (u -+ L is linear along the step, its extreme is at an end), a
 spring entering at size x (when a^2 = x^2) clip(d_delta (a1^2 - x^2) / (a1^2 - a0^2),
--L, L).  d_delta is the root of the (continuous, nondecreasing) force; Brent's method,
-then one Newton step on the exact slope.  Paths this is exact for, whatever the
-length of the step: constant P (any Q: Masing), constant Q (P rising or falling
-monotonically), Q/P fixed from zero (proportional), and any path on which delta is
-linear in P^(2/3) between the points.  For another path (say Q linear in P at a ratio
-that slips) insert points: the error falls with the step (tests/test_load_path.py
-measures the rate).
+-L, L).  d_delta is the root of the (continuous, nondecreasing) force: Newton's method
+on the exact slope, inside a bracket that bisection shrinks when Newton would leave it.
+
+So a step is exact, whatever its length, at constant P (any change of Q: Masing's rule
+with memory), for P rising at constant Q from any state (d_delta = 0: nothing moves),
+for P falling at constant Q from a state whose spring forces all have the sign of Q
+(then delta only grows and no spring meets the opposite limit; Mindlin-Deresiewicz's
+case), for Q/P fixed from zero (proportional loading), and for any path on which delta
+is linear in P^(2/3) between the points.  For another path (Q and P rising together
+along curves, say) insert points: the error falls as the square of the step
+(tests/test_load_path.py measures the order).
+
+Accuracy and cost: the force fixes the state to a few ulp, but near sliding the state is
+ill-conditioned in the force (the stick size varies as (1 - Q/(mu P))^(1/3), so a
+relative change eps of Q moves it by eps / (3 (1 - Q/(mu P)))).  Each step in which P
+rises without slipping adds a piece (its entering springs have their own profile), so
+a long rising path costs O(n) per step.
 
 Closed forms (Mindlin & Deresiewicz 1953; derived here from the spring bed, checked
 against mpmath at 50 digits in tests/reference_load_path.py)
@@ -351,10 +363,11 @@ def load_path(body1, body2, normal_forces, tangential_forces, mu, angle=0.0, dir
     points (P_k, Q_k) in order.  Between two points the displacement is taken to change
     monotonically and in proportion to P^(2/3) where P changes; this makes every step
     exact at constant P (Masing's rule with memory, as :func:`hertz.tangential_history`),
-    at constant Q (P rising: nothing changes; P falling: the slip annulus grows from the
-    edge) and for Q/P fixed from zero (as :func:`hertz.proportional_loading`).  For
-    other paths between the given points (for example Q rising faster than mu P), give
-    more points: the result converges to the path's own as the steps shrink.
+    at constant Q with P rising (nothing changes) or falling from Mindlin and
+    Deresiewicz's state (the slip annulus grows from the edge), and for Q/P fixed from
+    zero (as :func:`hertz.proportional_loading`).  For other paths between the given
+    points (Q and P rising together along curves, for example), give more points: the
+    result converges to the path's own as the square of the step.
 
     Mindlin's uncoupled solution: Hertz's pressure whatever the tangential traction
     (Goodman's coupling of dissimilar materials neglected; :func:`hertz.dundurs_beta`

@@ -103,6 +103,25 @@ def test_normal_down_matches_mindlin_deresiewicz(scene, p1):
     assert abs(path.displacement[3] - (d - 2 * f)) < TOL_CONDITIONED * cond * d
 
 
+def test_normal_force_steps_at_fixed_q_do_not_depend_on_their_length():
+    """P raised at fixed Q from a state with reversals, and P lowered at fixed Q from a
+    state whose spring forces all have the sign of Q (Q raised after P was): one step
+    and 40 give the same state (the docstring's exactness claims)."""
+    body1, body2 = _masing_contact()
+    steps = np.linspace(20.0, 34.0, 41)[1:]
+    head_p, head_q = [20.0, 20.0, 20.0], [0.0, 6.0, -2.0]  # a reversal: mixed signs
+    one = hertz.load_path(body1, body2, head_p + [34.0], head_q + [-2.0], MU)
+    many = hertz.load_path(body1, body2, head_p + list(steps), head_q + [-2.0] * 40, MU)
+    assert one.displacement[-1] == many.displacement[-1] == one.displacement[2]
+    head_p, head_q = [20.0, 20.0, 32.0, 32.0], [0.0, 4.0, 4.0, 7.0]  # all of Q's sign
+    steps = np.linspace(32.0, 26.0, 41)[1:]
+    one = hertz.load_path(body1, body2, head_p + [26.0], head_q + [7.0], MU)
+    many = hertz.load_path(body1, body2, head_p + list(steps), head_q + [7.0] * 40, MU)
+    assert one.displacement[-1] == pytest.approx(many.displacement[-1], rel=1e-15)
+    assert one.stick_a[-1] == pytest.approx(many.stick_a[-1], rel=1e-15)
+    assert np.all(np.diff(many.displacement[4:]) > 0)  # delta grows as P falls
+
+
 def test_proportional_loading_matches_closed_form_and_hertz(scene):
     """Q/P fixed below mu from zero: 3 Q / (2 k(P)) at every point, no slip."""
     body1, body2, direction, sc = scene
