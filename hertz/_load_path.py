@@ -78,7 +78,9 @@ is linear in P^(2/3) between the points.  For another path (Q and P rising toget
 along curves, say) insert points: the error falls as the square of the step
 (tests/test_load_path.py measures the order).
 
-Accuracy and cost: the force fixes the state to a few ulp, but near sliding the state is
+Accuracy and cost: the state is held in units of the path's largest normal force, so
+the displacement is right to a few ulp of 3 mu P_ref / (2 k_ref) (a point whose forces
+are many orders below P_ref carries that absolute error); near sliding the state is
 ill-conditioned in the force (the stick size varies as (1 - Q/(mu P))^(1/3), so a
 relative change eps of Q moves it by eps / (3 (1 - Q/(mu P)))).  Each step in which P
 rises without slipping adds a piece (its entering springs have their own profile), so
@@ -107,7 +109,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from ._tangential import _mu, tangential_stiffness
+from ._tangential import _mu, dundurs_beta, tangential_stiffness
 from ._validate import as_float_array, error_at, first_failure
 
 __all__ = ["LoadPath", "load_path"]
@@ -144,6 +146,9 @@ class LoadPath:
         Coefficient of friction [-].
     direction : float
         Angle of the force from the major axis [rad], 0 or pi/2.
+    dundurs_beta : float
+        The size of the normal-tangential coupling that Mindlin's solution neglects
+        (:func:`hertz.dundurs_beta`; 0 for elastically similar bodies).
     """
 
     normal_force: np.ndarray
@@ -156,6 +161,7 @@ class LoadPath:
     sliding: np.ndarray
     mu: float
     direction: float
+    dundurs_beta: float
 
 
 class _SpringBed:
@@ -441,10 +447,11 @@ def load_path(body1, body2, normal_forces, tangential_forces, mu, angle=0.0, dir
     n = P.size
     p_ref = float(P.max())
     zeros = np.zeros(n)
+    ref = _contact(body1, body2, load=p_ref if p_ref > 0.0 else 1.0, angle=angle)
+    beta = float(dundurs_beta(ref))
     if p_ref == 0.0:  # never in contact (Q = 0 throughout by |Q| <= mu P)
         return LoadPath(P, shear, zeros, zeros, zeros.copy(), zeros.copy(), zeros.copy(),
-                        np.zeros(n, dtype=bool), mu, direction)
-    ref = _contact(body1, body2, load=p_ref, angle=angle)
+                        np.zeros(n, dtype=bool), mu, direction, beta)
     a_ref, b_ref = float(ref.a), float(ref.b)
     reach = 1.5 * mu * p_ref / float(tangential_stiffness(ref, direction))  # U
     alpha = np.cbrt(P / p_ref)
@@ -464,4 +471,4 @@ def load_path(body1, body2, normal_forces, tangential_forces, mu, angle=0.0, dir
     a = alpha * a_ref
     b = alpha * b_ref
     return LoadPath(P, shear, reach * disp, a, b, front * a_ref, front * b_ref, sliding, mu,
-                    direction)
+                    direction, beta)

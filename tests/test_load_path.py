@@ -332,8 +332,10 @@ def test_wrong_types_are_type_errors():
         hertz.load_path(body1, body2, ["a", "b"], [0.0, 0.0], 0.3)
 
 
-def test_result_is_frozen():
+def test_result_is_frozen_and_reports_the_neglected_coupling():
     body1, body2 = _masing_contact()
     path = hertz.load_path(body1, body2, [10.0], [1.0], 0.3)
     with pytest.raises(AttributeError):
         path.displacement = None
+    beta = hertz.dundurs_beta(hertz.contact(body1, body2, load=10.0))
+    assert path.dundurs_beta == beta and beta != 0.0  # steel on polymer
