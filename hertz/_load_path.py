@@ -415,8 +415,10 @@ def load_path(body1, body2, normal_forces, tangential_forces, mu, angle=0.0, dir
 
     Notes
     -----
-    The displacement after P = 0 keeps its last value (the bodies part; a new contact
-    starts from that position).
+    The first point is reached from the unloaded state like any other step, so a first
+    point with Q != 0 is reached by proportional loading; to apply Q at constant P,
+    start the path with (P, 0).  The displacement after P = 0 keeps its last value (the
+    bodies part; a new contact starts from that position).
 
     Examples
     --------
