@@ -256,6 +256,37 @@ def test_zero_normal_force_erases_the_memory():
     assert not np.any(empty.displacement) and not np.any(empty.a)
 
 
+def test_traction_obeys_coulomb_and_slides_at_the_limit_where_springs_slide():
+    """The spring bed's state is a superposition of Cattaneo distributions: on the ellipse
+    of size rho its traction is -sum_j B_j (sqrt(r_j^2 - rho^2) - sqrt(max(l_j, rho)^2 -
+    rho^2)) over the pieces A_j + B_j x^2 on [l_j, r_j] (the Abel transform of the line
+    load; the limit profile, B = -1, gives mu p = sqrt(alpha^2 - rho^2)).  Over random
+    paths the traction never exceeds mu p (3D Coulomb, which the one-dimensional limit
+    does not imply by itself), and equals +-mu p outside the stick ellipse of the step.
+    Observed: |t|/(mu p) - 1 <= 5.9e-13 (rounding where p -> 0 at the edge), slip-zone
+    traction within 5.4e-14 alpha^2 of mu p."""
+    from hertz._load_path import _SpringBed
+
+    rng = np.random.default_rng(5)
+    worst_over = worst_slip = 0.0
+    for _ in range(60):
+        bed = _SpringBed()
+        for alpha, frac in zip(np.cbrt(rng.uniform(0.01, 1.0, 15)), rng.uniform(-1, 1, 15),
+                               strict=True):
+            _, front = bed.step(float(alpha), float(frac * alpha**3), 0.0)
+            e, b = bed.edges, bed.B
+            rho = np.linspace(0.0, alpha, 300, endpoint=False)[:, None]
+            lo, hi = np.maximum(e[:-1], rho), np.maximum(e[1:], rho)
+            t = -np.sum(b * (np.sqrt(hi**2 - rho**2) - np.sqrt(lo**2 - rho**2)), axis=1)
+            p = np.sqrt(alpha**2 - rho[:, 0] ** 2)
+            worst_over = max(worst_over, np.max(np.abs(t) / p - 1.0))
+            slip = rho[:, 0] > front
+            if slip.any():
+                worst_slip = max(worst_slip, np.max(np.abs(np.abs(t[slip]) - p[slip])) / alpha**2)
+    assert worst_over < 9e-13
+    assert worst_slip < 8e-14
+
+
 # ----------------------------------------------------------------------- convergence
 def _slope(ns, errors):
     return -np.polyfit(np.log(ns), np.log(errors), 1)[0]
