@@ -472,8 +472,8 @@ def load_path(body1, body2, normal_forces, tangential_forces, mu, angle=0.0, dir
     ref = _contact(body1, body2, load=p_ref if p_ref > 0.0 else 1.0, angle=angle)
     beta = float(dundurs_beta(ref))
     if p_ref == 0.0:  # never in contact (Q = 0 throughout by |Q| <= mu P)
-        return LoadPath(P, shear, zeros, zeros, zeros.copy(), zeros.copy(), zeros.copy(),
-                        np.zeros(n, dtype=bool), mu, direction, beta)
+        return _result(P, shear, zeros, zeros, zeros, zeros, zeros, np.zeros(n, dtype=bool),
+                       mu, direction, beta)
     a_ref, b_ref = float(ref.a), float(ref.b)
     reach = 1.5 * mu * p_ref / float(tangential_stiffness(ref, direction))  # U
     alpha = np.cbrt(P / p_ref)
@@ -492,5 +492,16 @@ def load_path(body1, body2, normal_forces, tangential_forces, mu, angle=0.0, dir
     front[sliding] = 0.0
     a = alpha * a_ref
     b = alpha * b_ref
-    return LoadPath(P, shear, reach * disp, a, b, front * a_ref, front * b_ref, sliding, mu,
-                    direction, beta)
+    return _result(P, shear, reach * disp, a, b, front * a_ref, front * b_ref, sliding, mu,
+                   direction, beta)
+
+
+def _result(*fields):
+    """The LoadPath, its arrays copied and read-only (the result does not share memory
+    with the caller's force arrays)."""
+    arrays = []
+    for value in fields[:8]:
+        value = np.array(value, copy=True)
+        value.setflags(write=False)
+        arrays.append(value)
+    return LoadPath(*arrays, *fields[8:])

@@ -370,5 +370,11 @@ def test_result_is_frozen_and_reports_the_neglected_coupling():
     path = hertz.load_path(body1, body2, [10.0], [1.0], 0.3)
     with pytest.raises(AttributeError):
         path.displacement = None
+    with pytest.raises(ValueError):
+        path.displacement[0] = 1.0  # read-only
+    forces = np.array([1.0, 2.0])
+    kept = hertz.load_path(body1, body2, [10.0, 10.0], forces, 0.3)
+    forces[0] = 3.0
+    assert kept.tangential_force[0] == 1.0  # not a view of the caller's array
     beta = hertz.dundurs_beta(hertz.contact(body1, body2, load=10.0))
     assert path.dundurs_beta == beta and beta != 0.0  # steel on polymer
