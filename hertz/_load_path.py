@@ -118,6 +118,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from . import _interop
 from ._tangential import _mu, dundurs_beta, tangential_stiffness
 from ._validate import as_float_array, error_at, first_failure
 
@@ -426,8 +427,13 @@ def load_path(body1, body2, normal_forces, tangential_forces, mu, angle=0.0, dir
         Per point: displacement [m] along the force, contact and stick semi-axes [m],
         sliding.
 
+    pint Quantities are taken in any unit of their kind (kN, lbf) and converted to SI;
+    pandas Series and numpy arrays alike give the values.  The result holds SI floats.
+
     Raises
     ------
+    TypeError
+        A force that is not a number (or a quantity of another kind, such as a length).
     ValueError
         mu not positive and finite; a force not finite; P < 0; |Q| > mu P (index
         given); arrays not one-dimensional or of different lengths; ``direction`` not
@@ -460,6 +466,16 @@ def load_path(body1, body2, normal_forces, tangential_forces, mu, angle=0.0, dir
     """
     from ._contact import contact as _contact
 
+    # pint quantities in any unit of their kind, as SI numbers (never a bare magnitude)
+    given = []
+    for name, value, unit in (("normal_forces", normal_forces, _interop.N),
+                              ("tangential_forces", tangential_forces, _interop.N),
+                              ("mu", mu, _interop.ONE), ("angle", angle, _interop.RAD),
+                              ("direction", direction, _interop.RAD)):
+        if _interop.library(value) == "pint":
+            value = _interop._to_si(value, name, unit)
+        given.append(value)
+    normal_forces, tangential_forces, mu, angle, direction = given
     mu = float(_mu(mu)) if np.ndim(mu) == 0 else None
     if mu is None:
         raise ValueError("mu must be a single positive, finite coefficient of friction for "

@@ -378,3 +378,15 @@ def test_result_is_frozen_and_reports_the_neglected_coupling():
     assert kept.tangential_force[0] == 1.0  # not a view of the caller's array
     beta = hertz.dundurs_beta(hertz.contact(body1, body2, load=10.0))
     assert path.dundurs_beta == beta and beta != 0.0  # steel on polymer
+
+
+def test_pint_forces_are_converted_not_stripped():
+    pint = pytest.importorskip("pint")
+    units = pint.UnitRegistry()
+    body1, body2 = _masing_contact()
+    plain = hertz.load_path(body1, body2, [20.0, 20.0], [0.0, 3.0], MU)
+    quantities = hertz.load_path(body1, body2, units.Quantity([0.02, 0.02], "kN"),
+                                 units.Quantity([0.0, 3000.0], "mN"), MU)
+    np.testing.assert_allclose(quantities.displacement, plain.displacement, rtol=1e-15)
+    with pytest.raises(TypeError, match="normal_forces must be a force"):
+        hertz.load_path(body1, body2, units.Quantity([1.0, 1.0], "m"), [0.0, 0.1], MU)
