@@ -122,7 +122,7 @@ from . import _interop
 from ._tangential import _mu, dundurs_beta, tangential_stiffness
 from ._validate import as_float_array, error_at, first_failure
 
-__all__ = ["LoadPath", "load_path"]
+__all__ = ["LoadPath", "LoadPathSpring", "load_path"]
 
 
 @dataclass(frozen=True, slots=True)
@@ -287,6 +287,16 @@ class _SpringBed:
                 delta = self._solve(prepared, alpha1, target, lo, hi)
         self._commit(prepared, alpha1, delta)
         return delta, self._front
+
+    def move(self, alpha1, delta):
+        """Move to contact size alpha1 with the displacement increment ``delta`` (scaled);
+        returns Q / (mu P_ref) and the innermost x that slid (alpha1 if none)."""
+        if alpha1 == 0.0:
+            self.edges, self.A, self.B, self.alpha = np.zeros(1), np.zeros(0), np.zeros(0), 0.0
+            return 0.0, 0.0
+        self._commit(self._prepare(alpha1), alpha1, delta)
+        e = self.edges
+        return 1.5 * float(self._integral(e[:-1], e[1:], self.A, self.B).sum()), self._front
 
     def _solve(self, prepared, alpha1, target, lo, hi):
         """The increment whose force is ``target`` (strictly between the forces at ``lo``
@@ -521,3 +531,108 @@ def _result(*fields):
         value.setflags(write=False)
         arrays.append(value)
     return LoadPath(*arrays, *fields[8:])
+
+
+class LoadPathSpring:
+    """Mindlin-Deresiewicz with a changing normal force, in the shape a DEM code uses:
+    the normal force and a tangential displacement increment in, the tangential force
+    out.
+
+    The same exact one-dimensional memory as :func:`hertz.load_path` (module docstring
+    of ``hertz._load_path``), driven by displacement instead of force, for one contact
+    along a principal axis: within a step the displacement changes in proportion to
+    P^(2/3) where P changes.  At constant P it is :class:`hertz.TangentialSpring`;
+    unlike it, the normal force may change at every step (springs leave the contact
+    with their force, enter it with none), which is what a DEM contact does.  Where
+    the whole contact slides the force is +-mu P and ``sliding`` is true.
+
+    Parameters
+    ----------
+    body1, body2 : Body
+        The bodies, as :func:`hertz.contact` takes them.
+    mu : float
+        Coefficient of friction [-], > 0.
+    angle : float
+        Angle between the bodies' principal planes [rad].
+    direction : {0.0, math.pi / 2}
+        The line of the tangential motion: the major (0) or minor (pi/2) axis [rad].
+
+    Attributes
+    ----------
+    normal_force, force, displacement : float
+        P [N], the tangential force Q [N] and the accumulated relative displacement
+        along the line [m] (slip included) after the last step.
+    stick_a, stick_b : float
+        Semi-axes of the stick ellipse of the last step [m] (as :class:`LoadPath`).
+    sliding : bool
+        Whether the whole contact slid in the last step (|Q| = mu P).
+
+    Examples
+    --------
+    >>> import hertz
+    >>> ball = hertz.Body.sphere(0.01, E=210e9, nu=0.3)
+    >>> plane = hertz.Body.plane(E=210e9, nu=0.3)
+    >>> spring = hertz.LoadPathSpring(ball, plane, mu=0.3)
+    >>> q = spring.step(100.0, 0.0)  # pressed, no tangential motion yet
+    >>> q = spring.step(100.0, 4e-7)  # pushed sideways at 100 N
+    >>> t = hertz.contact(ball, plane, load=100.0).tangential(q, mu=0.3)
+    >>> print(f"{t.displacement / 4e-7:.12f}")  # the Cattaneo-Mindlin displacement
+    1.000000000000
+    >>> q = spring.step(150.0, 0.0)  # pressed harder: the force stays
+    >>> print(f"{spring.force / q:.12f}")
+    1.000000000000
+    >>> float(spring.step(10.0, 0.0)), spring.sliding  # unloaded to 10 N: slides at mu P
+    (3.0, True)
+    """
+
+    def __init__(self, body1, body2, mu, angle=0.0, direction=0.0):
+        from ._contact import contact as _contact
+
+        if _interop.library(mu) == "pint":
+            mu = _interop._to_si(mu, "mu", _interop.ONE)
+        if np.ndim(mu) != 0:
+            raise ValueError("mu must be a single positive, finite coefficient of friction")
+        self._mu = float(_mu(mu))
+        self._direction = _direction(direction)
+        ref = _contact(body1, body2, load=1.0, angle=angle)  # P_ref = 1 N
+        self._a_ref, self._b_ref = float(ref.a), float(ref.b)
+        self._reach = 1.5 * self._mu / float(tangential_stiffness(ref, self._direction))
+        self._bed = _SpringBed()
+        self.normal_force = 0.0
+        self.force = 0.0
+        self.displacement = 0.0
+        self.stick_a = 0.0
+        self.stick_b = 0.0
+        self.sliding = False
+
+    def step(self, normal_force, increment):
+        """Move to the normal force ``normal_force`` [N] (>= 0) with the relative
+        tangential displacement ``increment`` [m] along the line; return the tangential
+        force [N]."""
+        load = float(_checked_scalar(normal_force, "normal_force", _interop.N))
+        inc = float(_checked_scalar(increment, "increment", _interop.M))
+        if not 0.0 <= load < math.inf:
+            raise ValueError(f"normal_force must be a non-negative, finite force in N, got "
+                             f"{load!r}")
+        if not math.isfinite(inc):
+            raise ValueError(f"increment must be a finite displacement in m, got {inc!r}")
+        alpha = float(np.cbrt(load))
+        scaled, front = self._bed.move(alpha, inc / self._reach)
+        self.normal_force = load
+        self.displacement += inc
+        self.sliding = alpha > 0.0 and front == 0.0
+        self.force = math.copysign(self._mu * load, scaled) if self.sliding else (
+            self._mu * scaled)
+        self.stick_a = front * self._a_ref
+        self.stick_b = front * self._b_ref
+        return self.force
+
+
+def _checked_scalar(value, name, unit):
+    if _interop.library(value) == "pint":
+        value = _interop._to_si(value, name, unit)
+    arr = as_float_array(value, name)
+    if arr.ndim != 0:
+        raise ValueError(f"{name} must be a single number (one contact, one step), got an "
+                         f"array of shape {arr.shape}")
+    return arr

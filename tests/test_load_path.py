@@ -390,3 +390,58 @@ def test_pint_forces_are_converted_not_stripped():
     np.testing.assert_allclose(quantities.displacement, plain.displacement, rtol=1e-15)
     with pytest.raises(TypeError, match="normal_forces must be a force"):
         hertz.load_path(body1, body2, units.Quantity([1.0, 1.0], "m"), [0.0, 0.1], MU)
+
+
+# ----------------------------------------------------------------------- LoadPathSpring
+@pytest.mark.parametrize("direction", [0.0, math.pi / 2])
+def test_spring_at_constant_normal_force_is_tangential_spring(direction):
+    """Displacement-driven at constant P, through sliding both ways and reversals: the
+    forces of hertz.TangentialSpring (observed within 3.6e-16 mu P)."""
+    body1, body2 = _masing_contact()
+    load = 40.0
+    c = hertz.contact(body1, body2, load=load)
+    reach = 1.5 * MU * load / c.tangential_stiffness(direction)
+    steps = reach * np.array([0.3, 0.4, -0.5, 0.2, 1.2, 0.5, -0.7, -1.9, 0.6, 0.1, -0.05,
+                              3.0, -0.2])
+    old = hertz.TangentialSpring(c, MU, direction)
+    new = hertz.LoadPathSpring(body1, body2, MU, direction=direction)
+    assert new.step(load, 0.0) == 0.0
+    for d in steps:
+        expected = old.step(d)
+        assert abs(new.step(load, d) - expected) < 6e-16 * MU * load
+        assert new.sliding == old.sliding
+        assert new.displacement == pytest.approx(old.displacement, rel=1e-15)
+
+
+@pytest.mark.parametrize("direction", [0.0, math.pi / 2])
+def test_spring_driven_by_load_paths_displacements_gives_back_its_forces(direction):
+    """load_path's displacements fed to the spring, with the normal forces, give back the
+    path's tangential forces (force and displacement control are one model), including
+    the steps that slide as a whole (observed 3.0e-16 of mu P_max)."""
+    body1, body2 = _masing_contact()
+    loads = np.array([20, 20, 32, 32, 28, 12, 12, 25, 30, 30, 14.0])
+    forces = np.array([0, 4, 4, 7, -3, -3, 2, 6, -5, -11.25, -5.25])
+    path = hertz.load_path(body1, body2, loads, forces, MU, direction=direction)
+    assert path.sliding[-2:].all()
+    spring = hertz.LoadPathSpring(body1, body2, MU, direction=direction)
+    steps = np.diff(path.displacement, prepend=0.0)
+    back = np.array([spring.step(p, d) for p, d in zip(loads, steps, strict=True)])
+    assert np.abs(back - forces).max() < 4.5e-16 * MU * loads.max()
+    assert spring.sliding and spring.force == -MU * 14.0 and spring.stick_a == 0.0
+
+
+def test_spring_separation_and_bad_input():
+    body1, body2 = _masing_contact()
+    spring = hertz.LoadPathSpring(body1, body2, MU)
+    spring.step(20.0, 0.0)
+    spring.step(20.0, 1e-7)
+    assert spring.step(0.0, 0.0) == 0.0 and spring.stick_a == 0.0 and not spring.sliding
+    assert spring.step(20.0, 0.0) == 0.0  # a new contact carries nothing
+    for args, match in [((-1.0, 0.0), "normal_force"), ((math.nan, 0.0), "normal_force"),
+                        ((20.0, math.inf), "increment"), (([20.0, 30.0], 0.0), "single")]:
+        with pytest.raises(ValueError, match=match):
+            spring.step(*args)
+    with pytest.raises(ValueError, match="principal axis"):
+        hertz.LoadPathSpring(body1, body2, MU, direction=1.0)
+    with pytest.raises(ValueError, match="mu"):
+        hertz.LoadPathSpring(body1, body2, -MU)
