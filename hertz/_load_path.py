@@ -437,9 +437,6 @@ def load_path(body1, body2, normal_forces, tangential_forces, mu, angle=0.0, dir
         Per point: displacement [m] along the force, contact and stick semi-axes [m],
         sliding.
 
-    pint Quantities are taken in any unit of their kind (kN, lbf) and converted to SI;
-    pandas Series and numpy arrays alike give the values.  The result holds SI floats.
-
     Raises
     ------
     TypeError
@@ -455,6 +452,10 @@ def load_path(body1, body2, normal_forces, tangential_forces, mu, angle=0.0, dir
     point with Q != 0 is reached by proportional loading; to apply Q at constant P,
     start the path with (P, 0).  The displacement after P = 0 keeps its last value (the
     bodies part; a new contact starts from that position).
+
+    pint Quantities are taken in any unit of their kind (kN, lbf) and converted to SI;
+    pandas Series and numpy arrays alike give their values.  The result holds SI floats.
+    One contact per call (a loop over contacts is the caller's).
 
     Examples
     --------
