@@ -10,6 +10,7 @@ Conventions used throughout:
 
 from ._contact import Body, Contact, LineContact, contact, line_contact
 from ._ellipse import ellipticity
+from ._load_path import LoadPath, LoadPathSpring, load_path
 from ._tangential import (
     FrettingLoop,
     Tangential,
@@ -20,7 +21,8 @@ from ._tangential import (
     tangential_history,
 )
 
-__all__ = ["Body", "Contact", "FrettingLoop", "LineContact", "Tangential", "TangentialSpring",
-           "contact", "dundurs_beta", "ellipticity", "line_contact", "proportional_loading",
-           "tangential_compliance", "tangential_history"]
+__all__ = ["Body", "Contact", "FrettingLoop", "LineContact", "LoadPath", "LoadPathSpring",
+           "Tangential", "TangentialSpring", "contact", "dundurs_beta", "ellipticity",
+           "line_contact", "load_path", "proportional_loading", "tangential_compliance",
+           "tangential_history"]
 __version__ = "0.1.0"
