@@ -47,8 +47,17 @@ from .elasticity import rigid_body_modes, stiffness
 from .errors import FEMValidationError
 from .mesh import BlockMesh
 from .scenes import Scene
-from .solve import (AMG_MODES, CG_MAXITER, CG_RTOL, KAPPA, LOOSE_REDUCTION, SETTLED_FRACTION,
-                    ContactSolution, _amg, solve_contact)
+from .solve import (
+    AMG_MODES,
+    CG_MAXITER,
+    CG_RTOL,
+    KAPPA,
+    LOOSE_REDUCTION,
+    SETTLED_FRACTION,
+    ContactSolution,
+    _amg,
+    solve_contact,
+)
 
 log = logging.getLogger("fem_validation")
 
@@ -61,7 +70,6 @@ MAX_STICK_ITERATIONS = 40
 DIRECTION_TOL = 1e-4
 #: Relative rounding allowed in |trial| <= mu N.
 STICK_ROUNDING = 1e-9
-DEBUG_COUPLING = False
 #: Rebuild the AMG preconditioner when more than this fraction of the active pairs changed
 #: between stick and slip since its setup.
 REBUILD_FRACTION = 0.05
@@ -219,27 +227,35 @@ class _TangentialSystem:
         # dofs of the pairs: (n_pairs, 3) for each body
         self.dof1 = 3 * mesh.pairs[:, :1] + np.arange(3)
         self.dof2 = self.n1 + 3 * mesh.pairs[:, 1:] + np.arange(3)
+        self._pattern = None
 
     def assemble(self, k_normal: np.ndarray, tangential: np.ndarray):
         """K plus the pair springs: k_normal on z [N/m] and the 2x2 matrices
         ``tangential`` (n_pairs, 2, 2) on x and y [N/m], with the fixed dofs eliminated
         (rows and columns cleared, unit diagonal)."""
-        rows, cols, vals = [], [], []
-        blocks = [(2, 2, k_normal)] + [(i, j, tangential[:, i, j])
-                                       for i in range(2) for j in range(2)]
-        for ci, cj, k in blocks:
-            i1, i2 = self.dof1[:, ci], self.dof2[:, ci]
-            j1, j2 = self.dof1[:, cj], self.dof2[:, cj]
-            rows += [i1, i2, i1, i2]
-            cols += [j1, j2, j2, j1]
-            vals += [k, k, -k, -k]
-        springs = sparse.csr_matrix((np.concatenate(vals), (np.concatenate(rows),
-                                                            np.concatenate(cols))),
-                                    shape=(self.n, self.n))
-        A = (self.K + springs).tocsr()
-        rows = np.repeat(np.arange(self.n), np.diff(A.indptr))
-        A.data *= self.keep[rows] * self.keep[A.indices]
-        A = (A + sparse.diags(1.0 - self.keep)).tocsr()
+        if self._pattern is None:
+            K = self.K.tocsr(copy=True)
+            rows = np.repeat(np.arange(self.n), np.diff(K.indptr))
+            K.data *= self.keep[rows] * self.keep[K.indices]
+            self._eliminated = (K + sparse.diags(1.0 - self.keep)).tocsr()
+            rows, cols = [], []
+            for ci in range(3):
+                for cj in range(3):
+                    i1, i2 = self.dof1[:, ci], self.dof2[:, ci]
+                    j1, j2 = self.dof1[:, cj], self.dof2[:, cj]
+                    rows += [i1, i2, i1, i2]
+                    cols += [j1, j2, j2, j1]
+            rows, cols = np.concatenate(rows), np.concatenate(cols)
+            self._pattern = (rows, cols, self.keep[rows] * self.keep[cols])
+        rows, cols, mask = self._pattern
+        block = np.zeros((len(k_normal), 3, 3))
+        block[:, :2, :2] = tangential
+        block[:, 2, 2] = k_normal
+        vals = np.concatenate([v for ci in range(3) for cj in range(3)
+                               for v in (block[:, ci, cj], block[:, ci, cj],
+                                         -block[:, ci, cj], -block[:, ci, cj])])
+        springs = sparse.csr_matrix((vals * mask, (rows, cols)), shape=(self.n, self.n))
+        A = (self._eliminated + springs).tocsr()
         A.sort_indices()
         return A
 
@@ -451,7 +467,6 @@ def solve_friction(scene: Scene, mesh: BlockMesh, mu: float, axis: str = "x",
         slip = np.where(sliding[:, None],
                         rel[:, :2] - force_pair / np.where(active, k_pair, 1.0)[:, None], slip)
         coupling = max(coupling, float(np.max(np.abs(k_normal * rel[:, 2]) / mesh.pair_area)))
-        if DEBUG_COUPLING: _dp = k_normal * rel[:, 2] / mesh.pair_area; _i = np.argsort(-np.abs(_dp))[:6]; print("dp/p", np.round(_dp[_i] / (k_normal * np.maximum(-normal.gap, 0) / mesh.pair_area).max(), 4), "xy/a", np.round(mesh.bodies[0].p[:2, mesh.pairs[_i, 0]].T / 1.76e-4 / 0.8 * 0.8, 2).tolist(), "stick", stick[_i])
         force = factor * float(force_pair[:, system.d].sum())
         reaction = system.K1 @ x[: system.n1]
         top_reaction = factor * float(reaction[system.top_dofs].sum())

@@ -73,7 +73,8 @@ def run(scene, level: int, mu: float, ratio: float, axis: str, ramp_steps: int, 
     seconds = time.perf_counter() - t0
     write_grade(g, out / f"{scene.name}-{axis}", command)
     c = scene.hertz(sol.normal.force)
-    return {"scene": scene.name, "level": level, "axis": axis, "alpha": float(c.alpha), "mu": mu, "load": sol.normal.force,
+    return {"scene": scene.name, "level": level, "axis": axis, "alpha": float(c.alpha),
+            "mu": mu, "load": sol.normal.force,
             "ratio": float(sol.force[sol.snapshot] / (mu * sol.normal.force)),
             "metrics": {k: v for k, v in g.metrics.items()}, "passed": g.passed,
             "failed": [ch.name for ch in g.checks if ch.passed is False],
