@@ -41,8 +41,10 @@ from .curved import (
 )
 from .curved_mesh import DEFAULT_CURVED_LEVEL, CurvedScene, ball_groove, build_curved, sphere_plane
 from .errors import FEMValidationError
+from .friction import FrictionSolution, friction_result, solve_friction
 from .grade import DEFAULT_TOLERANCES, Grade  # the function: fem_validation.grade.grade
-from .mesh import DEFAULT_LEVEL, LEVEL_H0, LEVEL_SCALE, BlockMesh, build
+from .grade_tangential import TangentialGrade, grade_tangential
+from .mesh import DEFAULT_LEVEL, LEVEL_H0, LEVEL_SCALE, BlockMesh, build, mirrored
 from .output import plot_profiles, write_reports, write_vtu
 from .result import BodyStress, ContactFrame, ContactResult, ResultError
 from .scenes import (
@@ -60,6 +62,7 @@ from .solve import (
     solve_contact,
     transferred_active_set,
 )
+from .tangential_result import TangentialResult
 
 __all__ = [
     "A_OVER_R",
@@ -80,9 +83,12 @@ __all__ = [
     "CurvedComparison",
     "CurvedScene",
     "FEMValidationError",
+    "FrictionSolution",
     "Grade",
     "ResultError",
     "Scene",
+    "TangentialGrade",
+    "TangentialResult",
     "ball_groove",
     "build",
     "build_curved",
@@ -92,10 +98,14 @@ __all__ = [
     "crossed_30deg",
     "default_scenes",
     "equal_steel",
+    "friction_result",
+    "grade_tangential",
+    "mirrored",
     "run_curved",
     "scene_from_toml",
     "solve_contact",
     "solve_curved",
+    "solve_friction",
     "sphere_plane",
     "steel_on_aluminium",
     "validate",
