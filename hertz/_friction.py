@@ -351,29 +351,31 @@ class SlidingMaxima:
     """The largest stresses in a body under a sliding Hertz contact (normal + friction).
 
     Stresses in Pa, positions in m in the ellipse frame (x along a, y along b, z depth).
+    Floats for one contact; arrays of the contacts' shape from
+    :meth:`hertz.Tangential.maxima` of an array of contacts.
 
     Attributes
     ----------
-    von_mises, x_von_mises, y_von_mises, z_von_mises : float
+    von_mises, x_von_mises, y_von_mises, z_von_mises : float or ndarray
         The largest von Mises stress [Pa] and where it is [m] (z = 0: on the surface).
-    tau_max, x_tau_max, y_tau_max, z_tau_max : float
+    tau_max, x_tau_max, y_tau_max, z_tau_max : float or ndarray
         The largest principal shear stress (s1 - s3)/2 (Tresca/2) [Pa] and where it is [m].
-    tensile, x_tensile, y_tensile : float
+    tensile, x_tensile, y_tensile : float or ndarray
         The largest principal stress on the surface [Pa] (tension, at the trailing edge)
         and where it is [m].
     """
 
-    von_mises: float
-    x_von_mises: float
-    y_von_mises: float
-    z_von_mises: float
-    tau_max: float
-    x_tau_max: float
-    y_tau_max: float
-    z_tau_max: float
-    tensile: float
-    x_tensile: float
-    y_tensile: float
+    von_mises: float | np.ndarray
+    x_von_mises: float | np.ndarray
+    y_von_mises: float | np.ndarray
+    z_von_mises: float | np.ndarray
+    tau_max: float | np.ndarray
+    x_tau_max: float | np.ndarray
+    y_tau_max: float | np.ndarray
+    z_tau_max: float | np.ndarray
+    tensile: float | np.ndarray
+    x_tensile: float | np.ndarray
+    y_tensile: float | np.ndarray
 
 
 def _principal(s):
@@ -504,6 +506,23 @@ def _scalar_inputs(a, b, p0, mu, nu, direction):
                             f"got an array of shape {v.shape}")
         out.append(float(v))
     return out + [float(vals[8])]
+
+
+def check_maxima_inputs(a, b, p0, mu, nu, direction, stick_ratio, shape):
+    """The inputs of :func:`sliding_maxima` for an array of contacts of ``shape``, each
+    broadcast to it and checked: the first bad element is a ValueError naming the input,
+    its value and its index in ``shape``."""
+    values = [np.broadcast_to(as_float_array(v, name), shape) for v, name in zip(
+        (a, b, p0, mu, nu, direction, stick_ratio),
+        ("a", "b", "p0", "mu", "nu", "direction", "stick_ratio"), strict=True)]
+    a, b, p0, mu, nu, direction, ratio = values
+    _check(a, b, p0, mu, nu, 0.0, 0.0, 0.0, direction)
+    ok = (ratio >= 0) & (ratio <= 1)
+    if not np.all(ok):
+        i = int(np.argmin(ok.reshape(-1)))
+        raise ValueError(f"stick_ratio must be c/a in [0, 1], got "
+                         f"{ratio.reshape(-1)[i].item()!r}{index_text(shape, i)}")
+    return values
 
 
 def sliding_maxima(a, b, p0, mu, nu, direction=0.0, stick_ratio=0.0) -> SlidingMaxima:
