@@ -1,14 +1,18 @@
 """The tangential API around the partial-slip state: Tangential.maxima of arrays of
-contacts (each element bit for bit the scalar search), the repr of the results, and
-FrettingLoop.loop of pandas and xarray results."""
+contacts (each element bit for bit the scalar search), ``hertz --direction``, the repr of
+the results, and FrettingLoop.loop of pandas and xarray results."""
 
 import dataclasses
+import json
+import math
+import tomllib
 
 import numpy as np
 import pytest
 
 import hertz
 from hertz._friction import SlidingMaxima, sliding_maxima
+from hertz.cli import main
 
 BALL = hertz.Body(0.01, 0.03, E=210e9, nu=0.3)
 BLOCK = hertz.Body.plane(E=70e9, nu=0.22)
@@ -76,3 +80,114 @@ def test_maxima_of_an_array_names_the_bad_element_before_searching():
         bad.maxima(body=1)
     with pytest.raises(ValueError, match="body must be 1 or 2"):
         t.maxima(body=3)
+
+
+# ------------------------------------------------------------------ hertz --direction DEG
+#: a ball of radius 10 mm in a groove of 30 mm on glass: an ellipse (b/a about 0.5), so the
+#: direction matters, and dissimilar bodies
+GROOVE = ["--r1x", "0.01", "--r1y", "0.03", "--r2x", "inf", "--r2y", "inf", "--e2", "70e9",
+          "--nu2", "0.22", "--load", "100"]
+
+
+def command(capsys, *argv):
+    status = main(list(argv))
+    out, err = capsys.readouterr()
+    return status, out, err
+
+
+def tangential_json(capsys, *argv):
+    status, out, err = command(capsys, *GROOVE, "--tangential", "20", "--mu", "0.4", *argv,
+                               "--json")
+    assert status == 0 and err == "", err
+    return json.loads(out)["tangential"]
+
+
+def test_direction_is_the_api_direction_in_degrees(capsys):
+    t = tangential_json(capsys, "--direction", "30")
+    assert t["direction_deg"] == 30.0 and t["direction"] == math.radians(30.0)
+    c = hertz.contact(hertz.Body(0.01, 0.03, E=210e9, nu=0.3), BLOCK, load=100.0)
+    api = c.tangential(20.0, 0.4, math.radians(30.0))
+    for key in ("no_slip_stiffness", "stick_a", "stick_b", "displacement",
+                "displacement_transverse", "stiffness"):
+        assert t[key] == getattr(api, key), key
+    assert t["fretting_energy"] == c.fretting(20.0, 0.4, math.radians(30.0)).energy
+
+
+def test_direction_follows_the_compliance_of_the_two_axes(capsys):
+    # the compliance is a diagonal tensor in the ellipse frame: along a force at angle t,
+    # 1/k = cos^2 t / k_x + sin^2 t / k_y, and the displacement's part across the force is
+    # (c_y - c_x) sin t cos t against c_x cos^2 t + c_y sin^2 t along it (the stick zone
+    # moves rigidly, so partial slip keeps the ratio)
+    along_x, along_y = tangential_json(capsys), tangential_json(capsys, "--direction", "90")
+    assert along_x["displacement_transverse"] == 0.0
+    assert abs(along_y["displacement_transverse"]) < 1e-15 * along_y["displacement"]
+    cx, cy = 1 / along_x["no_slip_stiffness"], 1 / along_y["no_slip_stiffness"]
+    assert cx > 1.04 * cy  # the major axis is the more compliant one
+    for degrees in (30.0, -60.0, 135.0):
+        t = tangential_json(capsys, "--direction", str(degrees))
+        c, s = math.cos(math.radians(degrees)), math.sin(math.radians(degrees))
+        along = cx * c * c + cy * s * s
+        assert t["no_slip_stiffness"] * along == pytest.approx(1.0, abs=3e-15)
+        assert t["displacement_transverse"] / t["displacement"] == pytest.approx(
+            (cy - cx) * s * c / along, rel=1e-13)
+        # the stick zone and the limit of friction do not depend on the direction
+        assert t["stick_a"] == along_x["stick_a"] and t["sliding"] is False
+
+
+def test_direction_is_reduced_exactly_modulo_360(capsys):
+    base = tangential_json(capsys, "--direction", "30")
+    for degrees in ("390", "-330", "36000000000030"):
+        t = tangential_json(capsys, "--direction", degrees)
+        assert t["direction_deg"] == float(degrees)
+        assert {k: v for k, v in t.items() if k != "direction_deg"} == {
+            k: v for k, v in base.items() if k != "direction_deg"}, degrees
+
+
+def test_direction_in_the_table_and_the_scene_file(capsys, tmp_path):
+    status, out, _ = command(capsys, *GROOVE, "--tangential", "20", "--mu", "0.4",
+                             "--direction", "30")
+    assert status == 0
+    assert "tangential force Q = 20 N at 30 deg from the major axis, mu = 0.4" in out
+    assert "displacement across Q" in out
+    status, out, _ = command(capsys, *GROOVE, "--tangential", "20", "--mu", "0.4")
+    assert "along the major axis, mu = 0.4" in out and "across Q" not in out
+    # --print-scene writes direction_deg, --scene reads it back to the same result
+    path = tmp_path / "scene.toml"
+    assert command(capsys, *GROOVE, "--tangential", "20", "--mu", "0.4", "--direction",
+                   "-12.5", "--print-scene", str(path))[0] == 0
+    assert tomllib.loads(path.read_text())["direction_deg"] == -12.5
+    status, out, _ = command(capsys, "--scene", str(path), "--json")
+    direct = tangential_json(capsys, "--direction", "-12.5")
+    assert status == 0 and json.loads(out)["tangential"] == direct
+    # the option overrides the file
+    status, out, _ = command(capsys, "--scene", str(path), "--direction", "30", "--json")
+    assert json.loads(out)["tangential"] == tangential_json(capsys, "--direction", "30")
+
+
+@pytest.mark.parametrize(("argv", "message"), [
+    (["--tangential", "20", "--mu", "0.4", "--direction", "nan"],
+     "--direction must be a finite angle in degrees (scene key direction_deg), got nan"),
+    (["--tangential", "20", "--mu", "0.4", "--direction", "inf"], "got inf"),
+    (["--tangential", "20", "--mu", "0.4", "--direction=-inf"], "got -inf"),
+    (["--tangential", "20", "--mu", "0.4", "--direction", "east"],
+     "argument --direction: not a number: 'east'"),
+    (["--tangential", "20", "--mu", "0.4", "--direction"],
+     "argument --direction: expected one argument"),
+    (["--direction", "30"], "--direction needs --tangential and --mu"),
+])
+def test_bad_direction_is_one_line_and_status_2(capsys, argv, message):
+    status, out, err = command(capsys, *GROOVE, *argv)
+    assert status == 2 and out == "" and "Traceback" not in err
+    assert err.count("\n") == 1 and err.startswith("hertz: error: ") and message in err, err
+
+
+def test_bad_direction_in_a_scene_file(capsys, tmp_path):
+    path = tmp_path / "scene.toml"
+    path.write_text('tangential = 20\nmu = 0.4\ndirection_deg = "north"\n')
+    status, out, err = command(capsys, "--scene", str(path))
+    assert status == 2 and err == "hertz: error: direction_deg must be a number, got 'north'\n"
+    path.write_text('direction_deg = 10\n')
+    assert "--direction needs --tangential" in command(capsys, "--scene", str(path))[2]
+    with pytest.raises(SystemExit):
+        main(["--help"])
+    assert "  direction_deg [deg]" in capsys.readouterr().out
