@@ -73,7 +73,7 @@ from __future__ import annotations
 
 import dataclasses
 import math
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 
 import numpy as np
 
@@ -331,12 +331,14 @@ class Tangential:
     no_slip_stiffness: float | np.ndarray
     sliding: bool | np.ndarray
     dundurs_beta: float | np.ndarray
-    _a: float | np.ndarray
-    _b: float | np.ndarray
-    _p0: float | np.ndarray
+    # the contact's semi-axes [m] and peak pressure [Pa], for the traction and stresses
+    # (private: the Contact has them; hidden from the repr)
+    _a: float | np.ndarray = field(repr=False)
+    _b: float | np.ndarray = field(repr=False)
+    _p0: float | np.ndarray = field(repr=False)
     # (nu1, nu2) of the bodies; None in a result rebuilt around pandas/xarray/pint/dask
     # fields, which carries no stress field
-    _nu: tuple | None = None
+    _nu: tuple | None = field(default=None, repr=False)
 
     def traction(self, x, y):
         """Shear traction along the force at (x, y) in the ellipse frame [Pa].
@@ -578,7 +580,8 @@ class FrettingLoop:
     stiffness: float | np.ndarray
     mu: float | np.ndarray
     load: float | np.ndarray
-    _reach: float | np.ndarray  # 3 mu P / (2 k), the displacement where sliding starts
+    # 3 mu P / (2 k), the displacement where sliding starts (private; hidden from the repr)
+    _reach: float | np.ndarray = field(repr=False)
 
     def _f(self, x):
         """The virgin curve Q -> displacement [m] for 0 <= x <= mu P."""
@@ -603,7 +606,16 @@ class FrettingLoop:
 
     def loop(self, points=101):
         """The closed loop: (force, displacement) [N, m], each of shape (2 points - 1, ...),
-        down the unloading branch from Q* to -Q* and back up the reloading branch."""
+        down the unloading branch from Q* to -Q* and back up the reloading branch.
+
+        For a result of pandas Series, each is a DataFrame with a row per point of the
+        loop (index ``point``) and a column per contact (the Series' index); of xarray
+        DataArrays, a DataArray with the dimension ``point`` in front of the contacts';
+        of pint Quantities, Quantities in N and m; of pandas DataFrames (which have no
+        third axis), numpy arrays of shape (2 points - 1, rows, columns).
+        """
+        if _interop.any_wrapped(self._reach):  # pandas, xarray, pint
+            return _interop.fretting_loop(self, points)
         t = np.linspace(1.0, -1.0, int(points))
         t = t.reshape((-1,) + (1,) * np.ndim(self.amplitude))
         down = t * self.amplitude

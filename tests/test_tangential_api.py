@@ -191,3 +191,90 @@ def test_bad_direction_in_a_scene_file(capsys, tmp_path):
     with pytest.raises(SystemExit):
         main(["--help"])
     assert "  direction_deg [deg]" in capsys.readouterr().out
+
+
+# ------------------------------------------------------------------ repr and loop()
+PLANE = hertz.Body.plane(70e9, 0.33)
+STEEL = (210e9, 0.3)
+PRIVATE = (" _a=", " _b=", " _p0=", " _nu=", " _reach=")  # (stick_a= is public)
+
+
+def test_repr_shows_the_public_fields_only():
+    c = hertz.contact(hertz.Body.sphere(5e-3, *STEEL), PLANE, load=np.array([50.0, 100.0]))
+    for result in (c.tangential(10.0, 0.3), c.fretting(10.0, 0.3),
+                   hertz.contact(hertz.Body.sphere(5e-3, *STEEL), PLANE, load=50.0)
+                   .tangential(10.0, 0.3)):
+        text = repr(result)
+        for name in PRIVATE:
+            assert name not in text, (name, text)
+        for f in dataclasses.fields(result):
+            assert (f" {f.name}=" in text or f"({f.name}=" in text) is not (
+                f.name.startswith("_")), f.name
+    # hidden from the repr, not from the result: the private fields are still there
+    t = c.tangential(10.0, 0.3)
+    np.testing.assert_array_equal(t._a, c.a)
+    assert t._nu == (0.3, 0.33)
+
+
+def fretting_reference(radius, load, amplitude):
+    c = hertz.contact(hertz.Body.sphere(radius, *STEEL), PLANE, load=load)
+    return c.fretting(amplitude, 0.3).loop(7)
+
+
+def test_loop_of_a_pandas_result():
+    pd = pytest.importorskip("pandas")
+    index = pd.Index(["small", "mid", "big"], name="ball")
+    radius = pd.Series([4e-3, 6e-3, 8e-3], index=index)
+    c = hertz.contact(hertz.Body.sphere(radius, *STEEL), PLANE, load=100.0)
+    loop = c.fretting(pd.Series([5.0, 10.0, 20.0], index=index), 0.3)
+    assert all(name not in repr(loop) for name in PRIVATE)
+    force, displacement = loop.loop(7)
+    ref_force, ref_displacement = fretting_reference(radius.to_numpy(), 100.0,
+                                                     np.array([5.0, 10.0, 20.0]))
+    for got, ref in ((force, ref_force), (displacement, ref_displacement)):
+        assert isinstance(got, pd.DataFrame) and got.shape == (13, 3)
+        assert got.columns.equals(index) and got.index.name == "point"
+        np.testing.assert_array_equal(got.to_numpy(), ref)
+    # the loop closes and turns at +-Q* with +-delta*
+    assert force.loc[0, "big"] == force.loc[12, "big"] == 20.0 and force.loc[6, "big"] == -20.0
+    np.testing.assert_array_equal(displacement.loc[0], loop.displacement_amplitude.to_numpy())
+    np.testing.assert_array_equal(displacement.loc[6], -loop.displacement_amplitude.to_numpy())
+    # a DataFrame has no third axis: numpy, rows and columns in order
+    frame = pd.DataFrame({"x": [4e-3, 6e-3], "y": [8e-3, 1e-2]}, index=["p", "q"])
+    c = hertz.contact(hertz.Body.sphere(frame, *STEEL), PLANE, load=100.0)
+    force, displacement = c.fretting(10.0, 0.3).loop(7)
+    ref_force, ref_displacement = fretting_reference(frame.to_numpy(), 100.0, 10.0)
+    assert type(force) is np.ndarray and force.shape == (13, 2, 2)
+    np.testing.assert_array_equal(force, ref_force)
+    np.testing.assert_array_equal(displacement, ref_displacement)
+
+
+def test_loop_of_an_xarray_result():
+    xr = pytest.importorskip("xarray")
+    radius = xr.DataArray([4e-3, 6e-3, 8e-3], dims="ball", coords={"ball": ["s", "m", "b"]})
+    load = xr.DataArray([50.0, 100.0], dims="case")
+    c = hertz.contact(hertz.Body.sphere(radius, *STEEL), PLANE, load=load)
+    loop = c.fretting(10.0, 0.3)
+    assert all(name not in repr(loop) for name in PRIVATE)
+    force, displacement = loop.loop(7)
+    ref_force, ref_displacement = fretting_reference(radius.values[:, None],
+                                                     load.values[None, :], 10.0)
+    for got, ref, name in ((force, ref_force, "force"),
+                           (displacement, ref_displacement, "displacement")):
+        assert isinstance(got, xr.DataArray) and got.dims == ("point", "ball", "case")
+        assert got.name == name and list(got.coords["ball"].values) == ["s", "m", "b"]
+        np.testing.assert_array_equal(got.values, ref)
+    np.testing.assert_array_equal(displacement.isel(point=0).values,
+                                  loop.displacement_amplitude.values)
+
+
+def test_loop_of_a_pint_result():
+    pint = pytest.importorskip("pint")
+    ureg = pint.UnitRegistry()
+    c = hertz.contact(hertz.Body.sphere(np.array([4.0, 6.0]) * ureg.mm, *STEEL), PLANE,
+                      load=100.0)
+    force, displacement = c.fretting(10 * ureg.N, 0.3).loop(7)
+    ref_force, ref_displacement = fretting_reference(np.array([4e-3, 6e-3]), 100.0, 10.0)
+    assert force.units == ureg.N and displacement.units == ureg.m
+    np.testing.assert_array_equal(force.magnitude, ref_force)
+    np.testing.assert_array_equal(displacement.magnitude, ref_displacement)
