@@ -35,7 +35,7 @@ Carlson's R_D of (l, a^2 + l, b^2 + l), as in the normal problem.
 
 The six J are integrated numerically: with w = l + e^v the integrands are analytic in the
 strip |Im v| < pi (every singularity of s, A, B, and the zeros of T lie at w <= l on the
-real axis), so the trapezoid rule in v converges like exp(-2 pi^2 / h); h <= 0.4 and the
+real axis), so the trapezoid rule in v converges like exp(-2 pi^2 / h); h = 0.4 and the
 range chosen from the scales l, z^2/T'(l) and a^2 give about 1e-15 relative.
 s(w) = z^2/l + (w - l) (x^2/(A_l A) + y^2/(B_l B)) is a sum of non-negative terms.
 
@@ -48,8 +48,10 @@ mu p0 pi (4 + nu)/8 at the trailing edge.
 Traction along y is the same with the axes exchanged; any direction is their sum.
 Checked against an mpmath quadrature of Cerruti's solution (tests/reference_friction.py):
 within 6.7e-16 mu p0 at 33 points (b/a = 1, 0.5, 0.2; depths 0.01 a to 3 a and the surface
-outside the contact) for nu = 0.25, 0.3, 0.5. About 17 us per point (numpy), 35 times the
-normal field's C kernel (benchmarks/friction.py).
+outside the contact) for nu = 0.25, 0.3, 0.5, and within 3.5e-18 at 2.2e-11 a below the
+surface (tests/test_tangential_api.py). About 7.5 us per point (numpy; 190 nodes on
+average), 16 times the normal field's C kernel (benchmarks/friction.py, AMD EPYC, one
+core shared); a call at one point costs about 0.6 ms (numpy's overhead per operation).
 """
 
 from __future__ import annotations
@@ -72,22 +74,36 @@ _STEP = 0.4
 # and at least exp(-3v/2) (w -> infinity); ends where they are below 1e-17 of their peak
 _LOW, _LOW_SURFACE, _HIGH = 40.0, 80.0, 27.0
 _CHUNK = 2048
+# points per block of the trapezoid sums: (_ROWS, nodes) temporaries of about 0.5 MB
+_ROWS = 256
 _LOG_Z_MIN = np.log(1e-7)
 
 
 def _ellipsoidal_coordinate(a2, b2, x2, y2, z2):
     """The positive root l of x^2/(a^2+l) + y^2/(b^2+l) + z^2/l = 1 (0 on the contact).
 
-    Newton's method on l - z^2 - x^2 l/(a^2+l) - y^2 l/(b^2+l), increasing and convex in
-    l, from l = x^2 + y^2 + z^2 (to the right of the root): the iterates fall
-    monotonically onto the root.
+    Newton's method on f(l) = l - z^2 - x^2 l/(a^2+l) - y^2 l/(b^2+l), increasing and
+    convex in l, from the right of the root: the iterates fall monotonically onto it.
+
+    The start: with f(l) = l (e0 + l g(l)) - z^2, g(l) = x^2/(a^2 A) + y^2/(b^2 B)
+    decreasing, the root of the quadratic l (e0 + l g(u)) = z^2 for an upper bound u of
+    the root lies between the root and u (it undercuts f left of u).  Two such steps from
+    u = x^2 + y^2 + z^2 leave Newton one to three steps (from u itself, up to 40 where
+    the root is far below u, near the surface).
     """
-    lam = x2 + y2 + z2
     # 1 - x^2/(a^2+l) - y^2/(b^2+l) = e0 + l (x^2/(a^2 A) + y^2/(b^2 B)): no cancellation
     # for l << a^2 beyond the rounding of e0 itself
     e0 = 1.0 - x2 / a2 - y2 / b2
     inside = (z2 == 0) & (e0 >= 0)
-    lam = np.where(inside, 0.0, lam)
+    lam = x2 + y2 + z2
+    with np.errstate(divide="ignore", invalid="ignore"):
+        for _ in range(2):
+            g = x2 / (a2 * (a2 + lam)) + y2 / (b2 * (b2 + lam))
+            root = np.sqrt(e0 * e0 + 4.0 * g * z2)
+            # the positive root of g l^2 + e0 l - z^2, in its form without cancellation
+            model = np.where(e0 >= 0, 2.0 * z2 / (e0 + root), (root - e0) / (2.0 * g))
+            lam = np.where(model < lam, model, lam)   # (NaN where 0/0: keep the bound)
+    lam = np.where(inside, 0.0, np.maximum(lam, z2))
     for _ in range(200):
         A, B = a2 + lam, b2 + lam
         f = lam * (e0 + lam * (x2 / (a2 * A) + y2 / (b2 * B))) - z2
@@ -102,26 +118,53 @@ def _ellipsoidal_coordinate(a2, b2, x2, y2, z2):
     return lam
 
 
-def _trapezoid_sums(n, low, high, lam, zeta2, x2_a, y2_b, a2, b2):
+@functools.lru_cache(maxsize=64)
+def _node_factors(n):
+    """exp(k h) for the n nodes k = 0 .. n-1 of the trapezoid rule (read-only)."""
+    out = np.exp(_STEP * np.arange(n))
+    out.flags.writeable = False
+    return out
+
+
+def _trapezoid_sums(n, low, lam, zeta2, x2_a, y2_b, a2, b2):
     """The six integrals J / (kappa x^3, kappa x, kappa x^2 y, kappa y, kappa x, kappa y) by
-    the trapezoid rule with n nodes in v = log(w - l) from low to high."""
-    u = np.linspace(0.0, 1.0, n)
-    h = (high - low) / (n - 1)
-    v = low[:, None] + (high - low)[:, None] * u
-    dw = np.exp(v)                                # w - l, and dw/dv
-    w = lam[:, None] + dw
-    a_w, b_w = a2 + w, b2[:, None] + w
-    s = zeta2[:, None] + dw * x2_a[:, None] / a_w + dw * y2_b[:, None] / b_w
-    r_ab = 1.0 / np.sqrt(a_w * b_w)
-    rs = 1.0 / np.sqrt(s)
-    weight = dw * h[:, None]
-    ia, iab = 1.0 / a_w, 1.0 / (a_w * b_w)
-    k2 = weight * r_ab * rs                       # dw / (sqrt(AB s))
-    k3 = k2 * rs * rs                             # dw / (sqrt(AB) s^(3/2))
-    k5 = weight * r_ab * np.sqrt(w)
-    return (np.sum(k3 * ia * ia * ia, axis=1), np.sum(k2 * ia * ia, axis=1),
-            np.sum(k3 * ia * iab, axis=1), np.sum(k2 * iab, axis=1),
-            np.sum(k5 * ia * ia, axis=1), np.sum(k5 * iab, axis=1))
+    the trapezoid rule with n nodes v = low + k h in v = log(w - l), h = _STEP.
+
+    Blocks of _ROWS points at a time (the temporaries stay in the cache), the node
+    offsets w - l = exp(low) exp(k h) from one table of exp(k h) (no exp per node), the
+    divisions by A and B as products with their reciprocals, two square roots per node
+    (sqrt(1/(AB s)) and sqrt(w/(AB))), each sum a dot product (no temporary) and the
+    weight h applied to the sums.
+    """
+    factors = _node_factors(n)
+    out = np.empty((6, lam.size))
+    for i in range(0, lam.size, _ROWS):
+        rows = slice(i, i + _ROWS)
+        dw = np.exp(low[rows])[:, None] * factors     # w - l, and dw/dv
+        w = lam[rows, None] + dw
+        ia = np.add(a2, w)
+        np.divide(1.0, ia, out=ia)                    # 1/A
+        ib = np.add(b2[rows, None], w)
+        np.divide(1.0, ib, out=ib)                    # 1/B
+        s = x2_a[rows, None] * ia                     # s(w) = z^2/l + (w - l)(...)
+        s += y2_b[rows, None] * ib
+        s *= dw
+        s += zeta2[rows, None]
+        iab = ia * ib
+        k2 = np.divide(iab, s)
+        np.sqrt(k2, out=k2)
+        k2 *= dw                                      # dw / sqrt(AB s)
+        k3 = k2 / s                                   # dw / (sqrt(AB) s^(3/2))
+        k5 = np.multiply(iab, w, out=w)
+        np.sqrt(k5, out=k5)
+        k5 *= dw                                      # dw sqrt(w / (AB))
+        ia2 = ia * ia
+        k3a2 = np.multiply(k3, ia2, out=k3)
+        for j, (p, q) in enumerate(((k3a2, ia), (k2, ia2), (k3a2, ib), (k2, iab), (k5, ia2),
+                                    (k5, iab))):
+            out[j, rows] = np.einsum("ij,ij->i", p, q)
+    out *= _STEP                                      # the weight h of every node
+    return out
 
 
 def _sliding_along_x(a, b, nu, x, y, z):
@@ -164,13 +207,14 @@ def _sliding_along_x(a, b, nu, x, y, z):
                    np.log(np.minimum(a2, b2)) - _LOW_SURFACE)
     low = np.minimum(low, np.log(lam_safe) - _LOW)
     high = np.log(np.maximum(a2, b2) + lam) + _HIGH
-    # points need from 150 to 400 nodes: group them by their count (a multiple of 32)
-    count = 32 * np.ceil((np.ceil((high - low) / _STEP) + 1) / 32).astype(int)
+    # points need from 150 to 400 nodes: group them by their count (a multiple of 16; the
+    # last node at or beyond high)
+    count = 16 * np.ceil((np.ceil((high - low) / _STEP) + 1) / 16).astype(int)
     sums = np.empty((6, lam.size))
     for n in np.unique(count):
         k = count == n
-        sums[:, k] = _trapezoid_sums(int(n), low[k], high[k], lam[k], zeta2[k],
-                                     (x2 / A)[k], (y2 / B)[k], a2, b2[k])
+        sums[:, k] = _trapezoid_sums(int(n), low[k], lam[k], zeta2[k], (x2 / A)[k],
+                                     (y2 / B)[k], a2, b2[k])
     j1 = kappa * x2 * x * sums[0]
     j2 = kappa * x * sums[1]
     j3 = kappa * x2 * y * sums[2]
@@ -281,8 +325,13 @@ def sliding_stress(a, b, p0, mu, nu, x, y, z, direction=0.0):
     >>> round(float(s[0, 0] / (0.2 * 1e9 * np.pi * (4 + 0.3) / 8)), 12)
     1.0
     """
-    a, b, p0, mu, nu, x, y, z, direction = _check(a, b, p0, mu, nu, x, y, z, direction)
-    shape = np.broadcast_shapes(*(v.shape for v in (a, b, p0, mu, nu, x, y, z, direction)))
+    return _sliding(*_check(a, b, p0, mu, nu, x, y, z, direction))
+
+
+def _sliding(a, b, p0, mu, nu, x, y, z, direction):
+    """:func:`sliding_stress` of checked inputs (float64 arrays or floats)."""
+    shape = np.broadcast_shapes(*(np.shape(v) for v in (a, b, p0, mu, nu, x, y, z,
+                                                         direction)))
     flat = [np.broadcast_to(v, shape).reshape(-1) for v in (a, b, nu, x, y, z)]
     c, s = np.cos(direction), np.sin(direction)
     out = np.zeros(shape + (3, 3))
@@ -333,15 +382,19 @@ def partial_slip_stress(a, b, p0, mu, nu, x, y, z, stick_ratio, direction=0.0):
         i = int(np.argmin(ok.reshape(-1)))
         raise ValueError(f"stick_ratio must be c/a in [0, 1], got "
                          f"{ratio.reshape(-1)[i].item()!r}{index_text(ratio.shape, i)}")
-    full = sliding_stress(a, b, p0, mu, nu, x, y, z, direction)
+    return _partial_slip(*_check(a, b, p0, mu, nu, x, y, z, direction), ratio)
+
+
+def _partial_slip(a, b, p0, mu, nu, x, y, z, direction, ratio):
+    """:func:`partial_slip_stress` of checked inputs (float64 arrays or floats)."""
+    full = _sliding(a, b, p0, mu, nu, x, y, z, direction)
     has_stick = ratio > 0
     if not np.any(has_stick):
         return full
     # a zero stick ellipse is replaced by a unit one with zero traction
     r = np.where(has_stick, ratio, 1.0)
-    a_, b_ = as_float_array(a, "a"), as_float_array(b, "b")
-    stick = sliding_stress(r * a_, r * b_, np.where(has_stick, r, 0.0) * as_float_array(p0, "p0"),
-                           mu, nu, x, y, z, direction)
+    stick = _sliding(r * a, r * b, np.where(has_stick, r, 0.0) * p0, mu, nu, x, y, z,
+                     direction)
     return full - stick
 
 
@@ -401,11 +454,12 @@ class _Field:
         else:   # the normal kernel wants the major axis along x
             turned = point_stress(self.ratio, 1.0, 1.0, self.nu, y, x, z)
             normal = turned[..., [1, 0, 2], :][..., [1, 0, 2]]
+        # the inputs are checked (sliding_maxima) and the points the search's own
         if self.stick_ratio > 0:
-            return normal + partial_slip_stress(1.0, self.ratio, 1.0, self.mu, self.nu, x, y,
-                                                z, self.stick_ratio, self.direction)
-        return normal + sliding_stress(1.0, self.ratio, 1.0, self.mu, self.nu, x, y, z,
-                                       self.direction)
+            return normal + _partial_slip(1.0, self.ratio, 1.0, self.mu, self.nu, x, y, z,
+                                          self.direction, self.stick_ratio)
+        return normal + _sliding(1.0, self.ratio, 1.0, self.mu, self.nu, x, y, z,
+                                 self.direction)
 
     def values(self, x, y, z):
         """von Mises, (s1 - s3)/2, s1."""
@@ -558,8 +612,11 @@ def sliding_maxima(a, b, p0, mu, nu, direction=0.0, stick_ratio=0.0) -> SlidingM
     searched. For a circle and nu = 0.3 the von Mises maximum leaves the depth 0.48 a for
     the surface (the trailing edge) at mu = 0.3047 (:func:`surface_von_mises_mu`). The
     values agree with an mpmath quadrature of Boussinesq's and Cerruti's solutions at the
-    positions found within 4.4e-16 p0 (tests/test_friction.py). Scalars only; about 0.4 s
-    per contact.
+    positions found within 4.4e-16 p0 (tests/test_friction.py). Scalars only (an array of
+    contacts: :meth:`hertz.Tangential.maxima`); about 0.6 s per contact in partial slip
+    along a principal axis (benchmarks/friction.py), some thousand evaluations of the
+    field at one point; in another direction the whole half-space is searched, about 20
+    times longer.
 
     Examples
     --------

@@ -278,3 +278,75 @@ def test_loop_of_a_pint_result():
     assert force.units == ureg.N and displacement.units == ureg.m
     np.testing.assert_array_equal(force.magnitude, ref_force)
     np.testing.assert_array_equal(displacement.magnitude, ref_displacement)
+
+
+# ------------------------------------------------------------------ the friction field's kernel
+def _ellipsoidal_root(b2, x2, y2, z2):
+    """The root l > 0 of x^2/(1+l) + y^2/(b^2+l) + z^2/l = 1 at 40 digits, from the
+    squares as doubles (what the function is given)."""
+    mp = pytest.importorskip("mpmath")
+    with mp.workdps(40):
+        xx, yy, zz, bb = (mp.mpf(v) for v in (x2, y2, z2, b2))
+
+        def f(lam):
+            return xx / (1 + lam) + yy / (bb + lam) + zz / lam - 1
+
+        # f decreases from +inf (l -> 0+) to -1: bisection on a bracket, then polish
+        lo, hi = mp.mpf(0), mp.mpf(1)
+        while f(hi) > 0:
+            hi *= 4
+        for _ in range(400):
+            mid = (lo + hi) / 2
+            lo, hi = (mid, hi) if f(mid) > 0 else (lo, mid)
+        return float((lo + hi) / 2)
+
+
+@pytest.mark.parametrize(("ratio", "x", "y", "z"), [
+    # just below the surface, inside the contact (l about z^2 / (1 - x^2 - y^2/b^2)): the
+    # Newton iteration from l = x^2 + y^2 + z^2 alone stopped 7.7e-11 short at the first
+    (0.05, 0.04114029860500601, 0.0007514602718929231, 2.2446765701182954e-11),
+    (0.05, 0.0824, 0.0, 1.23e-9),
+    (1.0, 0.01, 0.0, 1e-9),
+    (0.5, 0.3, 0.1, 1e-10),
+    (0.3, 0.9, 0.03, 1e-7),
+    (1.0, -1.01, 0.0, 1e-6),
+    # below the contact, outside it, on the surface outside it
+    (1.0, 0.2, 0.1, 0.4),
+    (0.3, 0.0, 0.0, 0.7),
+    (1.0, 3.0, -2.0, 5.0),
+    (0.02, 1.3, 0.0, 0.0),
+    (1.0, 0.0, 2.0, 0.0),
+])
+def test_ellipsoidal_coordinate_against_mpmath(ratio, x, y, z):
+    from hertz._friction import _ellipsoidal_coordinate
+
+    x2, y2, z2 = (np.array([v * v]) for v in (x, y, z))
+    got = float(_ellipsoidal_coordinate(1.0, np.array([ratio * ratio]), x2, y2, z2)[0])
+    ref = _ellipsoidal_root(ratio * ratio, x2[0], y2[0], z2[0])
+    # observed at most 1.9e-16 relative
+    assert abs(got - ref) <= 3e-16 * ref, (got, ref)
+
+
+#: Cerruti's solution integrated by tests/reference_friction.py (mpmath, 25 digits,
+#: tol 1e-17): friction_ref12(1.0, 0.05, X, Y, Z) at a point 2.2e-11 a below the surface
+#: inside the contact, as [A (6), B (6)], stress / (mu p0) = A + (1 - 2 nu) B, components
+#: sxx, syy, szz, syz, sxz, sxy (134 s to compute)
+NEAR_SURFACE = (0.04114029860500601, 0.0007514602718929231, 2.2446765701182954e-11)
+NEAR_SURFACE_REFERENCE = [float.fromhex(v) for v in (
+    "-0x1.35253c4ac85aep-6", "-0x1.0b06ea5c61126p-9", "-0x1.042eb45218640p-40",
+    "-0x1.e500000000000p-78", "-0x1.ff82371a4b006p-1", "-0x1.e7befedadb9c5p-7",
+    "0x1.432f5799aadabp-8", "0x1.0b06ea5e390cfp-9", "0x0.0p+0", "0x0.0p+0", "0x0.0p+0",
+    "-0x1.79ce84425fefbp-14")]
+
+
+@pytest.mark.parametrize("nu", [0.25, 0.3, 0.5])
+def test_sliding_field_just_below_the_surface_against_cerruti_quadrature(nu):
+    from hertz._friction import sliding_stress
+
+    x, y, z = NEAR_SURFACE
+    s = sliding_stress(1.0, 0.05, 1.0, 1.0, nu, x, y, z)
+    got = np.array([s[i, j] for i, j in ((0, 0), (1, 1), (2, 2), (1, 2), (0, 2), (0, 1))])
+    ref = np.array(NEAR_SURFACE_REFERENCE)
+    ref = ref[:6] + (1 - 2 * nu) * ref[6:]
+    # observed at most 3.5e-18 (the ellipsoidal coordinate 7.7e-11 short gave 3.9e-11)
+    assert np.abs(got - ref).max() <= 1e-15
