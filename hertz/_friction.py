@@ -240,12 +240,8 @@ def _sliding_along_x(a, b, nu, x, y, z):
     return sxx, syy, szz, syz, sxz, sxy
 
 
-def _unit_field(a, b, nu, x, y, z, along_y):
-    """The six components / (mu p0) for a sliding traction along x (or y), flat arrays."""
-    if along_y:
-        # exchange the axes: traction along the new x
-        sxx, syy, szz, sxz, syz, sxy = _unit_field(b, a, nu, y, x, z, False)
-        return syy, sxx, szz, syz, sxz, sxy
+def _unit_field(a, b, nu, x, y, z):
+    """The six components / (mu p0) for a sliding traction along x, flat arrays."""
     scale = a
     out = [np.empty(x.shape) for _ in range(6)]
     for i in range(0, x.size, _CHUNK):
@@ -255,6 +251,26 @@ def _unit_field(a, b, nu, x, y, z, along_y):
         for o, p in zip(out, parts, strict=True):
             o[sl] = p
     return out
+
+
+def _unit_fields(problems):
+    """_unit_field of each problem (a, b, nu, x, y, z, along_y), the traction along y
+    being that along x with the axes exchanged.  Small problems go through one call
+    (numpy's cost per operation, not per point, dominates them: the search for the
+    maxima evaluates one point at a time, with up to four problems per point)."""
+    turned = [(b, a, nu, y, x, z) if along_y else (a, b, nu, x, y, z)
+              for a, b, nu, x, y, z, along_y in problems]
+    sizes = [p[3].size for p in turned]
+    if len(turned) > 1 and sum(sizes) <= _CHUNK:
+        joined = _unit_field(*(np.concatenate(column) for column in zip(*turned,
+                                                                        strict=True)))
+        ends = np.cumsum(sizes)[:-1]
+        fields = list(zip(*(np.split(c, ends) for c in joined), strict=True))
+    else:
+        fields = [_unit_field(*p) for p in turned]
+    # a problem turned: (sxx, syy, szz, syz, sxz, sxy) of the turned axes, back
+    return [(f[1], f[0], f[2], f[4], f[3], f[5]) if problem[-1] else tuple(f)
+            for f, problem in zip(fields, problems, strict=True)]
 
 
 def _check(a, b, p0, mu, nu, x, y, z, direction):
@@ -330,22 +346,37 @@ def sliding_stress(a, b, p0, mu, nu, x, y, z, direction=0.0):
 
 def _sliding(a, b, p0, mu, nu, x, y, z, direction):
     """:func:`sliding_stress` of checked inputs (float64 arrays or floats)."""
-    shape = np.broadcast_shapes(*(np.shape(v) for v in (a, b, p0, mu, nu, x, y, z,
-                                                         direction)))
-    flat = [np.broadcast_to(v, shape).reshape(-1) for v in (a, b, nu, x, y, z)]
+    return _tractions([(a, b, p0)], mu, nu, x, y, z, direction)[0]
+
+
+def _tractions(ellipses, mu, nu, x, y, z, direction):
+    """The sliding fields of the traction mu p over each ellipse (a, b, p0) [Pa], for
+    checked inputs (float64 arrays or floats): one stress tensor array per ellipse."""
+    shape = np.broadcast_shapes(*(np.shape(v) for v in (mu, nu, x, y, z, direction)),
+                                *(np.shape(v) for e in ellipses for v in e))
+
+    def flat(v):
+        return np.broadcast_to(v, shape).reshape(-1)
+
+    nu_, x_, y_, z_ = (flat(v) for v in (nu, x, y, z))
     c, s = np.cos(direction), np.sin(direction)
-    out = np.zeros(shape + (3, 3))
+    weights = [(along_y, w) for along_y, w in ((False, c), (True, s)) if np.any(w != 0)]
+    problems = [(flat(a), flat(b), nu_, x_, y_, z_, along_y)
+                for a, b, _ in ellipses for along_y, _ in weights]
+    fields = iter(_unit_fields(problems))
     index = ((0, 0), (1, 1), (2, 2), (1, 2), (0, 2), (0, 1))
-    for along_y, weight in ((False, c), (True, s)):
-        if not np.any(weight != 0):
-            continue
-        comps = _unit_field(*flat, along_y)
-        weight = np.broadcast_to(weight, shape)
-        for (i, j), comp in zip(index, comps, strict=True):
-            out[..., i, j] += weight * comp.reshape(shape)
-    for i, j in ((1, 2), (0, 2), (0, 1)):
-        out[..., j, i] = out[..., i, j]
-    out *= np.asarray(mu * p0)[..., None, None]
+    out = []
+    for _, _, p0 in ellipses:
+        stress = np.zeros(shape + (3, 3))
+        for _, weight in weights:
+            comps = next(fields)
+            weight = np.broadcast_to(weight, shape)
+            for (i, j), comp in zip(index, comps, strict=True):
+                stress[..., i, j] += weight * comp.reshape(shape)
+        for i, j in ((1, 2), (0, 2), (0, 1)):
+            stress[..., j, i] = stress[..., i, j]
+        stress *= np.asarray(mu * p0)[..., None, None]
+        out.append(stress)
     return out
 
 
@@ -387,14 +418,13 @@ def partial_slip_stress(a, b, p0, mu, nu, x, y, z, stick_ratio, direction=0.0):
 
 def _partial_slip(a, b, p0, mu, nu, x, y, z, direction, ratio):
     """:func:`partial_slip_stress` of checked inputs (float64 arrays or floats)."""
-    full = _sliding(a, b, p0, mu, nu, x, y, z, direction)
     has_stick = ratio > 0
     if not np.any(has_stick):
-        return full
+        return _sliding(a, b, p0, mu, nu, x, y, z, direction)
     # a zero stick ellipse is replaced by a unit one with zero traction
     r = np.where(has_stick, ratio, 1.0)
-    stick = _sliding(r * a, r * b, np.where(has_stick, r, 0.0) * p0, mu, nu, x, y, z,
-                     direction)
+    full, stick = _tractions([(a, b, p0), (r * a, r * b, np.where(has_stick, r, 0.0) * p0)],
+                             mu, nu, x, y, z, direction)
     return full - stick
 
 
