@@ -57,6 +57,7 @@ core shared); a call at one point costs about 0.6 ms (numpy's overhead per opera
 from __future__ import annotations
 
 import functools
+import math
 from dataclasses import dataclass
 
 import numpy as np
@@ -262,14 +263,15 @@ def _unit_fields(problems):
               for a, b, nu, x, y, z, along_y in problems]
     sizes = [p[3].size for p in turned]
     if len(turned) > 1 and sum(sizes) <= _CHUNK:
-        joined = _unit_field(*(np.concatenate(column) for column in zip(*turned,
-                                                                        strict=True)))
-        ends = np.cumsum(sizes)[:-1]
-        fields = list(zip(*(np.split(c, ends) for c in joined), strict=True))
+        joined = np.array(_unit_field(*(np.concatenate(column)
+                                        for column in zip(*turned, strict=True))))
+        ends = np.cumsum([0] + sizes)
+        fields = [joined[:, i:j] for i, j in zip(ends[:-1], ends[1:], strict=True)]
     else:
         fields = [_unit_field(*p) for p in turned]
-    # a problem turned: (sxx, syy, szz, syz, sxz, sxy) of the turned axes, back
-    return [(f[1], f[0], f[2], f[4], f[3], f[5]) if problem[-1] else tuple(f)
+    # as (6, n) arrays; a problem turned: (sxx, syy, szz, syz, sxz, sxy) of the turned
+    # axes, back
+    return [np.asarray(f)[[1, 0, 2, 4, 3, 5] if problem[-1] else slice(None)]
             for f, problem in zip(fields, problems, strict=True)]
 
 
@@ -364,17 +366,16 @@ def _tractions(ellipses, mu, nu, x, y, z, direction):
     problems = [(flat(a), flat(b), nu_, x_, y_, z_, along_y)
                 for a, b, _ in ellipses for along_y, _ in weights]
     fields = iter(_unit_fields(problems))
-    index = ((0, 0), (1, 1), (2, 2), (1, 2), (0, 2), (0, 1))
     out = []
     for _, _, p0 in ellipses:
-        stress = np.zeros(shape + (3, 3))
+        total = None
         for _, weight in weights:
-            comps = next(fields)
-            weight = np.broadcast_to(weight, shape)
-            for (i, j), comp in zip(index, comps, strict=True):
-                stress[..., i, j] += weight * comp.reshape(shape)
-        for i, j in ((1, 2), (0, 2), (0, 1)):
-            stress[..., j, i] = stress[..., i, j]
+            part = np.broadcast_to(weight, shape).reshape(-1) * next(fields)
+            total = part if total is None else total + part
+        if total is None:  # no traction (direction with cos = sin = 0 cannot occur)
+            total = np.zeros((6, math.prod(shape)))
+        # (sxx, syy, szz, syz, sxz, sxy) -> the symmetric tensor, row by row
+        stress = total[[0, 5, 4, 5, 1, 3, 4, 3, 2]].T.reshape(shape + (3, 3))
         stress *= np.asarray(mu * p0)[..., None, None]
         out.append(stress)
     return out
