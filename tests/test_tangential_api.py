@@ -17,6 +17,8 @@ from hertz.cli import main
 BALL = hertz.Body(0.01, 0.03, E=210e9, nu=0.3)
 BLOCK = hertz.Body.plane(E=70e9, nu=0.22)
 MU = 0.4
+PLANE = hertz.Body.plane(70e9, 0.33)
+STEEL = (210e9, 0.3)
 MAXIMA_FIELDS = [f.name for f in dataclasses.fields(SlidingMaxima)]
 
 
@@ -65,6 +67,17 @@ def test_maxima_of_an_array_broadcasts_a_scalar_field():
                              float(t.stick_a[0, j] / c.a[0, j]))
         for name in MAXIMA_FIELDS:
             assert getattr(m, name)[0, j] == getattr(ref, name), name
+
+
+def test_maxima_of_a_dask_result_is_that_of_numpy():
+    da = pytest.importorskip("dask.array")
+    radius = np.array([4e-3, 6e-3])
+    states = [hertz.contact(hertz.Body.sphere(r, *STEEL), PLANE, load=100.0).tangential(30.0, 0.3)
+              for r in (da.from_array(radius, chunks=1), radius)]
+    lazy, plain = (t.maxima(body=2) for t in states)
+    for name in MAXIMA_FIELDS:
+        value = getattr(lazy, name)
+        assert type(value) is np.ndarray and np.array_equal(value, getattr(plain, name)), name
 
 
 def test_maxima_of_an_array_names_the_bad_element_before_searching():
@@ -194,8 +207,6 @@ def test_bad_direction_in_a_scene_file(capsys, tmp_path):
 
 
 # ------------------------------------------------------------------ repr and loop()
-PLANE = hertz.Body.plane(70e9, 0.33)
-STEEL = (210e9, 0.3)
 PRIVATE = (" _a=", " _b=", " _p0=", " _nu=", " _reach=")  # (stick_a= is public)
 
 
