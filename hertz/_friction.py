@@ -49,8 +49,8 @@ Traction along y is the same with the axes exchanged; any direction is their sum
 Checked against an mpmath quadrature of Cerruti's solution (tests/reference_friction.py):
 within 6.7e-16 mu p0 at 33 points (b/a = 1, 0.5, 0.2; depths 0.01 a to 3 a and the surface
 outside the contact) for nu = 0.25, 0.3, 0.5, and within 3.5e-18 at 2.2e-11 a below the
-surface (tests/test_tangential_api.py). About 7.5 us per point (numpy; 190 nodes on
-average), 16 times the normal field's C kernel (benchmarks/friction.py, AMD EPYC, one
+surface (tests/test_tangential_api.py). About 4.2 us per point (numpy; 190 nodes on
+average), 9 times the normal field's C kernel (benchmarks/friction.py, AMD EPYC, one
 core shared); a call at one point costs about 0.6 ms (numpy's overhead per operation).
 """
 
@@ -75,8 +75,11 @@ _STEP = 0.4
 # and at least exp(-3v/2) (w -> infinity); ends where they are below 1e-17 of their peak
 _LOW, _LOW_SURFACE, _HIGH = 40.0, 80.0, 27.0
 _CHUNK = 2048
-# points per block of the trapezoid sums: (_ROWS, nodes) temporaries of about 0.5 MB
-_ROWS = 256
+# points per block of the trapezoid sums: (_ROWS, nodes) temporaries of about 150 kB, a
+# few of which fit in a 512 kB L2 cache (96 to 128 were fastest; 256 took 1.5 times as long)
+_ROWS = 96
+# the most nodes whose exp(k h) (at most e^680) come from one table
+_TABLE_NODES = 1700
 _LOG_Z_MIN = np.log(1e-7)
 
 
@@ -137,11 +140,16 @@ def _trapezoid_sums(n, low, lam, zeta2, x2_a, y2_b, a2, b2):
     (sqrt(1/(AB s)) and sqrt(w/(AB))), each sum a dot product (no temporary) and the
     weight h applied to the sums.
     """
-    factors = _node_factors(n)
+    # exp(k h) overflows beyond k h = 709 (and exp(low) is then subnormal): the points
+    # within about 1e-139 a of the surface need that many nodes; they take an exp per node
+    factors = _node_factors(n) if n <= _TABLE_NODES else _STEP * np.arange(n)
     out = np.empty((6, lam.size))
     for i in range(0, lam.size, _ROWS):
         rows = slice(i, i + _ROWS)
-        dw = np.exp(low[rows])[:, None] * factors     # w - l, and dw/dv
+        if n <= _TABLE_NODES:
+            dw = np.exp(low[rows])[:, None] * factors  # w - l, and dw/dv
+        else:
+            dw = np.exp(low[rows, None] + factors)
         w = lam[rows, None] + dw
         ia = np.add(a2, w)
         np.divide(1.0, ia, out=ia)                    # 1/A
@@ -172,6 +180,9 @@ def _sliding_along_x(a, b, nu, x, y, z):
     """sxx, syy, szz, syz, sxz, sxy / (mu p0) for traction along x; 1-d arrays, a = 1."""
     a2, b2 = a * a, np.asarray(b * b)
     x2, y2, z2 = x * x, y * y, z * z
+    # below z = 1.5e-154 a, z^2 underflows to 0: the surface (the field differs from it by
+    # O(z), O(sqrt(z)) at the edge), taken as such (z^2/T' = 0 has no logarithm)
+    z = np.where(z2 == 0, 0.0, z)
     lam = _ellipsoidal_coordinate(a2, b2, x2, y2, z2)
     A, B = a2 + lam, b2 + lam
     kappa = np.pi * a * b

@@ -361,3 +361,51 @@ def test_sliding_field_just_below_the_surface_against_cerruti_quadrature(nu):
     ref = ref[:6] + (1 - 2 * nu) * ref[6:]
     # observed at most 3.5e-18 (the ellipsoidal coordinate 7.7e-11 short gave 3.9e-11)
     assert np.abs(got - ref).max() <= 1e-15
+
+
+@pytest.mark.parametrize("ratio", [1.0, 0.3, 1e-3])
+def test_sliding_field_at_depths_down_to_1e_300_is_the_surface_field(ratio):
+    # the field is continuous down to the surface (changing like z inside the contact,
+    # like sqrt(z) at the edge): at depths far below the rounding of the coordinates it is
+    # the surface field, whose shear is minus the traction (z into the body). The
+    # ellipsoidal coordinate whose Newton iteration stopped early gave sxz = -mu p0
+    # instead of -mu p at z = 1e-60 a (and 1.0e-11 a: 3.9e-11 off)
+    from hertz._friction import sliding_stress
+
+    t = np.linspace(0.1, 2 * np.pi, 9)
+    for r in (0.3, 0.8, 1.2, 3.0):
+        x, y = r * np.cos(t), ratio * r * np.sin(t)
+        surface = sliding_stress(1.0, ratio, 1.0, 1.0, 0.3, x, y, 0.0)
+        if r < 1:
+            np.testing.assert_allclose(surface[:, 0, 2], -np.sqrt(1 - r * r), rtol=1e-15,
+                                       atol=1e-16)
+        for z in (1e-30, 1e-60, 1e-150, 1e-300):
+            below = sliding_stress(1.0, ratio, 1.0, 1.0, 0.3, x, y, z)
+            # observed 4.4e-16
+            assert np.abs(below - surface).max() <= 1e-15, (r, z)
+
+
+@pytest.mark.parametrize("distance", [1e4, 1e8, 1e12])
+def test_sliding_field_far_on_the_surface_is_cerruti_point_force(distance):
+    # Cerruti's unit point force along x on the surface (z = 0, k = 1 - 2 nu; Johnson,
+    # Contact Mechanics, eq. 3.87), times the traction's resultant 2/3 pi a b mu p0: the
+    # ellipse's size adds relative terms of (a/R)^2. On the surface outside the contact
+    # the old Newton iteration gave 2.2e8 mu p0 at 1e8 a
+    from hertz._friction import sliding_stress
+
+    nu, ratio = 0.3, 0.5
+    k = 1 - 2 * nu
+    force = 2 / 3 * np.pi * ratio
+    for angle in (0.3, 1.2, 2.5, 4.0):
+        x, y = distance * np.cos(angle), distance * np.sin(angle)
+        r = distance
+        s = sliding_stress(1.0, ratio, 1.0, 1.0, nu, x, y, 0.0)
+        sxx = x / (2 * np.pi * r ** 3) * (-3 * x * x / r ** 2 + k * (r * r - 3 * y * y) / r ** 2)
+        syy = x / (2 * np.pi * r ** 3) * (-3 * y * y / r ** 2 + k * (3 * r * r - 3 * x * x)
+                                           / r ** 2)
+        sxy = y / (2 * np.pi * r ** 3) * (-3 * x * x / r ** 2 + k * (-r * r + 3 * x * x)
+                                           / r ** 2)
+        for got, point in ((s[0, 0], sxx), (s[1, 1], syy), (s[0, 1], sxy)):
+            # observed 1.37 / d^2 at 1e4 a, rounding (2.2e-15) beyond
+            assert abs(got / (force * point) - 1) < 3.5e-15 + 2 / distance ** 2, angle
+        assert s[0, 2] == s[1, 2] == s[2, 2] == 0.0
