@@ -657,8 +657,8 @@ def sliding_maxima(a, b, p0, mu, nu, direction=0.0, stick_ratio=0.0) -> SlidingM
     positions found within 4.4e-16 p0 (tests/test_friction.py). Scalars only (an array of
     contacts: :meth:`hertz.Tangential.maxima`). Mostly Nelder-Mead's evaluations of the
     field at one point (about 0.5 ms sliding, 0.7 ms in partial slip off the axes): about
-    0.6 s per contact in partial slip along a principal axis, 2.5 s at 0.5 rad off it,
-    b/a = 0.5, c/a = 0.8 (benchmarks/friction.py, AMD EPYC; 1.0 s and 9.1 s before the
+    0.4 s per contact in partial slip along a principal axis, 2.5 s at 0.5 rad off it,
+    b/a = 0.5, c/a = 0.8 (benchmarks/friction.py, AMD EPYC; 0.9 s and 9.1 s before the
     field's evaluation at few points was batched).
 
     Examples
