@@ -35,7 +35,7 @@ Carlson's R_D of (l, a^2 + l, b^2 + l), as in the normal problem.
 
 The six J are integrated numerically: with w = l + e^v the integrands are analytic in the
 strip |Im v| < pi (every singularity of s, A, B, and the zeros of T lie at w <= l on the
-real axis), so the trapezoid rule in v converges like exp(-2 pi^2 / h); h <= 0.4 and the
+real axis), so the trapezoid rule in v converges like exp(-2 pi^2 / h); h = 0.4 and the
 range chosen from the scales l, z^2/T'(l) and a^2 give about 1e-15 relative.
 s(w) = z^2/l + (w - l) (x^2/(A_l A) + y^2/(B_l B)) is a sum of non-negative terms.
 
@@ -48,13 +48,16 @@ mu p0 pi (4 + nu)/8 at the trailing edge.
 Traction along y is the same with the axes exchanged; any direction is their sum.
 Checked against an mpmath quadrature of Cerruti's solution (tests/reference_friction.py):
 within 6.7e-16 mu p0 at 33 points (b/a = 1, 0.5, 0.2; depths 0.01 a to 3 a and the surface
-outside the contact) for nu = 0.25, 0.3, 0.5. About 17 us per point (numpy), 35 times the
-normal field's C kernel (benchmarks/friction.py).
+outside the contact) for nu = 0.25, 0.3, 0.5, and within 3.5e-18 at 2.2e-11 a below the
+surface (tests/test_tangential_api.py). About 4.2 us per point (numpy; 190 nodes on
+average), 9 times the normal field's C kernel (benchmarks/friction.py, AMD EPYC, one
+core shared); a call at one point costs about 0.6 ms (numpy's overhead per operation).
 """
 
 from __future__ import annotations
 
 import functools
+import math
 from dataclasses import dataclass
 
 import numpy as np
@@ -72,22 +75,39 @@ _STEP = 0.4
 # and at least exp(-3v/2) (w -> infinity); ends where they are below 1e-17 of their peak
 _LOW, _LOW_SURFACE, _HIGH = 40.0, 80.0, 27.0
 _CHUNK = 2048
+# points per block of the trapezoid sums: (_ROWS, nodes) temporaries of about 150 kB, a
+# few of which fit in a 512 kB L2 cache (96 to 128 were fastest; 256 took 1.5 times as long)
+_ROWS = 96
+# the most nodes whose exp(k h) (at most e^680) come from one table
+_TABLE_NODES = 1700
 _LOG_Z_MIN = np.log(1e-7)
 
 
 def _ellipsoidal_coordinate(a2, b2, x2, y2, z2):
     """The positive root l of x^2/(a^2+l) + y^2/(b^2+l) + z^2/l = 1 (0 on the contact).
 
-    Newton's method on l - z^2 - x^2 l/(a^2+l) - y^2 l/(b^2+l), increasing and convex in
-    l, from l = x^2 + y^2 + z^2 (to the right of the root): the iterates fall
-    monotonically onto the root.
+    Newton's method on f(l) = l - z^2 - x^2 l/(a^2+l) - y^2 l/(b^2+l), increasing and
+    convex in l, from the right of the root: the iterates fall monotonically onto it.
+
+    The start: with f(l) = l (e0 + l g(l)) - z^2, g(l) = x^2/(a^2 A) + y^2/(b^2 B)
+    decreasing, the root of the quadratic l (e0 + l g(u)) = z^2 for an upper bound u of
+    the root lies between the root and u (it undercuts f left of u).  Two such steps from
+    u = x^2 + y^2 + z^2 leave Newton one to three steps (from u itself, up to 40 where
+    the root is far below u, near the surface).
     """
-    lam = x2 + y2 + z2
     # 1 - x^2/(a^2+l) - y^2/(b^2+l) = e0 + l (x^2/(a^2 A) + y^2/(b^2 B)): no cancellation
     # for l << a^2 beyond the rounding of e0 itself
     e0 = 1.0 - x2 / a2 - y2 / b2
     inside = (z2 == 0) & (e0 >= 0)
-    lam = np.where(inside, 0.0, lam)
+    lam = x2 + y2 + z2
+    with np.errstate(divide="ignore", invalid="ignore"):
+        for _ in range(2):
+            g = x2 / (a2 * (a2 + lam)) + y2 / (b2 * (b2 + lam))
+            root = np.sqrt(e0 * e0 + 4.0 * g * z2)
+            # the positive root of g l^2 + e0 l - z^2, in its form without cancellation
+            model = np.where(e0 >= 0, 2.0 * z2 / (e0 + root), (root - e0) / (2.0 * g))
+            lam = np.where(model < lam, model, lam)   # (NaN where 0/0: keep the bound)
+    lam = np.where(inside, 0.0, np.maximum(lam, z2))
     for _ in range(200):
         A, B = a2 + lam, b2 + lam
         f = lam * (e0 + lam * (x2 / (a2 * A) + y2 / (b2 * B))) - z2
@@ -102,32 +122,67 @@ def _ellipsoidal_coordinate(a2, b2, x2, y2, z2):
     return lam
 
 
-def _trapezoid_sums(n, low, high, lam, zeta2, x2_a, y2_b, a2, b2):
+@functools.lru_cache(maxsize=64)
+def _node_factors(n):
+    """exp(k h) for the n nodes k = 0 .. n-1 of the trapezoid rule (read-only)."""
+    out = np.exp(_STEP * np.arange(n))
+    out.flags.writeable = False
+    return out
+
+
+def _trapezoid_sums(n, low, lam, zeta2, x2_a, y2_b, a2, b2):
     """The six integrals J / (kappa x^3, kappa x, kappa x^2 y, kappa y, kappa x, kappa y) by
-    the trapezoid rule with n nodes in v = log(w - l) from low to high."""
-    u = np.linspace(0.0, 1.0, n)
-    h = (high - low) / (n - 1)
-    v = low[:, None] + (high - low)[:, None] * u
-    dw = np.exp(v)                                # w - l, and dw/dv
-    w = lam[:, None] + dw
-    a_w, b_w = a2 + w, b2[:, None] + w
-    s = zeta2[:, None] + dw * x2_a[:, None] / a_w + dw * y2_b[:, None] / b_w
-    r_ab = 1.0 / np.sqrt(a_w * b_w)
-    rs = 1.0 / np.sqrt(s)
-    weight = dw * h[:, None]
-    ia, iab = 1.0 / a_w, 1.0 / (a_w * b_w)
-    k2 = weight * r_ab * rs                       # dw / (sqrt(AB s))
-    k3 = k2 * rs * rs                             # dw / (sqrt(AB) s^(3/2))
-    k5 = weight * r_ab * np.sqrt(w)
-    return (np.sum(k3 * ia * ia * ia, axis=1), np.sum(k2 * ia * ia, axis=1),
-            np.sum(k3 * ia * iab, axis=1), np.sum(k2 * iab, axis=1),
-            np.sum(k5 * ia * ia, axis=1), np.sum(k5 * iab, axis=1))
+    the trapezoid rule with n nodes v = low + k h in v = log(w - l), h = _STEP.
+
+    Blocks of _ROWS points at a time (the temporaries stay in the cache), the node
+    offsets w - l = exp(low) exp(k h) from one table of exp(k h) (no exp per node), the
+    divisions by A and B as products with their reciprocals, two square roots per node
+    (sqrt(1/(AB s)) and sqrt(w/(AB))), each sum a dot product (no temporary) and the
+    weight h applied to the sums.
+    """
+    # exp(k h) overflows beyond k h = 709 (and exp(low) is then subnormal): the points
+    # within about 1e-139 a of the surface need that many nodes; they take an exp per node
+    factors = _node_factors(n) if n <= _TABLE_NODES else _STEP * np.arange(n)
+    out = np.empty((6, lam.size))
+    for i in range(0, lam.size, _ROWS):
+        rows = slice(i, i + _ROWS)
+        if n <= _TABLE_NODES:
+            dw = np.exp(low[rows])[:, None] * factors  # w - l, and dw/dv
+        else:
+            dw = np.exp(low[rows, None] + factors)
+        w = lam[rows, None] + dw
+        ia = np.add(a2, w)
+        np.divide(1.0, ia, out=ia)                    # 1/A
+        ib = np.add(b2[rows, None], w)
+        np.divide(1.0, ib, out=ib)                    # 1/B
+        s = x2_a[rows, None] * ia                     # s(w) = z^2/l + (w - l)(...)
+        s += y2_b[rows, None] * ib
+        s *= dw
+        s += zeta2[rows, None]
+        iab = ia * ib
+        k2 = np.divide(iab, s)
+        np.sqrt(k2, out=k2)
+        k2 *= dw                                      # dw / sqrt(AB s)
+        k3 = k2 / s                                   # dw / (sqrt(AB) s^(3/2))
+        k5 = np.multiply(iab, w, out=w)
+        np.sqrt(k5, out=k5)
+        k5 *= dw                                      # dw sqrt(w / (AB))
+        ia2 = ia * ia
+        k3a2 = np.multiply(k3, ia2, out=k3)
+        for j, (p, q) in enumerate(((k3a2, ia), (k2, ia2), (k3a2, ib), (k2, iab), (k5, ia2),
+                                    (k5, iab))):
+            out[j, rows] = np.einsum("ij,ij->i", p, q)
+    out *= _STEP                                      # the weight h of every node
+    return out
 
 
 def _sliding_along_x(a, b, nu, x, y, z):
     """sxx, syy, szz, syz, sxz, sxy / (mu p0) for traction along x; 1-d arrays, a = 1."""
     a2, b2 = a * a, np.asarray(b * b)
     x2, y2, z2 = x * x, y * y, z * z
+    # below z = 1.5e-154 a, z^2 underflows to 0: the surface (the field differs from it by
+    # O(z), O(sqrt(z)) at the edge), taken as such (z^2/T' = 0 has no logarithm)
+    z = np.where(z2 == 0, 0.0, z)
     lam = _ellipsoidal_coordinate(a2, b2, x2, y2, z2)
     A, B = a2 + lam, b2 + lam
     kappa = np.pi * a * b
@@ -164,13 +219,14 @@ def _sliding_along_x(a, b, nu, x, y, z):
                    np.log(np.minimum(a2, b2)) - _LOW_SURFACE)
     low = np.minimum(low, np.log(lam_safe) - _LOW)
     high = np.log(np.maximum(a2, b2) + lam) + _HIGH
-    # points need from 150 to 400 nodes: group them by their count (a multiple of 32)
-    count = 32 * np.ceil((np.ceil((high - low) / _STEP) + 1) / 32).astype(int)
+    # points need from 150 to 400 nodes: group them by their count (a multiple of 16; the
+    # last node at or beyond high)
+    count = 16 * np.ceil((np.ceil((high - low) / _STEP) + 1) / 16).astype(int)
     sums = np.empty((6, lam.size))
     for n in np.unique(count):
         k = count == n
-        sums[:, k] = _trapezoid_sums(int(n), low[k], high[k], lam[k], zeta2[k],
-                                     (x2 / A)[k], (y2 / B)[k], a2, b2[k])
+        sums[:, k] = _trapezoid_sums(int(n), low[k], lam[k], zeta2[k], (x2 / A)[k],
+                                     (y2 / B)[k], a2, b2[k])
     j1 = kappa * x2 * x * sums[0]
     j2 = kappa * x * sums[1]
     j3 = kappa * x2 * y * sums[2]
@@ -196,12 +252,8 @@ def _sliding_along_x(a, b, nu, x, y, z):
     return sxx, syy, szz, syz, sxz, sxy
 
 
-def _unit_field(a, b, nu, x, y, z, along_y):
-    """The six components / (mu p0) for a sliding traction along x (or y), flat arrays."""
-    if along_y:
-        # exchange the axes: traction along the new x
-        sxx, syy, szz, sxz, syz, sxy = _unit_field(b, a, nu, y, x, z, False)
-        return syy, sxx, szz, syz, sxz, sxy
+def _unit_field(a, b, nu, x, y, z):
+    """The six components / (mu p0) for a sliding traction along x, flat arrays."""
     scale = a
     out = [np.empty(x.shape) for _ in range(6)]
     for i in range(0, x.size, _CHUNK):
@@ -211,6 +263,27 @@ def _unit_field(a, b, nu, x, y, z, along_y):
         for o, p in zip(out, parts, strict=True):
             o[sl] = p
     return out
+
+
+def _unit_fields(problems):
+    """_unit_field of each problem (a, b, nu, x, y, z, along_y), the traction along y
+    being that along x with the axes exchanged.  Small problems go through one call
+    (numpy's cost per operation, not per point, dominates them: the search for the
+    maxima evaluates one point at a time, with up to four problems per point)."""
+    turned = [(b, a, nu, y, x, z) if along_y else (a, b, nu, x, y, z)
+              for a, b, nu, x, y, z, along_y in problems]
+    sizes = [p[3].size for p in turned]
+    if len(turned) > 1 and sum(sizes) <= _CHUNK:
+        joined = np.array(_unit_field(*(np.concatenate(column)
+                                        for column in zip(*turned, strict=True))))
+        ends = np.cumsum([0] + sizes)
+        fields = [joined[:, i:j] for i, j in zip(ends[:-1], ends[1:], strict=True)]
+    else:
+        fields = [_unit_field(*p) for p in turned]
+    # as (6, n) arrays; a problem turned: (sxx, syy, szz, syz, sxz, sxy) of the turned
+    # axes, back
+    return [np.asarray(f)[[1, 0, 2, 4, 3, 5] if problem[-1] else slice(None)]
+            for f, problem in zip(fields, problems, strict=True)]
 
 
 def _check(a, b, p0, mu, nu, x, y, z, direction):
@@ -281,22 +354,41 @@ def sliding_stress(a, b, p0, mu, nu, x, y, z, direction=0.0):
     >>> round(float(s[0, 0] / (0.2 * 1e9 * np.pi * (4 + 0.3) / 8)), 12)
     1.0
     """
-    a, b, p0, mu, nu, x, y, z, direction = _check(a, b, p0, mu, nu, x, y, z, direction)
-    shape = np.broadcast_shapes(*(v.shape for v in (a, b, p0, mu, nu, x, y, z, direction)))
-    flat = [np.broadcast_to(v, shape).reshape(-1) for v in (a, b, nu, x, y, z)]
+    return _sliding(*_check(a, b, p0, mu, nu, x, y, z, direction))
+
+
+def _sliding(a, b, p0, mu, nu, x, y, z, direction):
+    """:func:`sliding_stress` of checked inputs (float64 arrays or floats)."""
+    return _tractions([(a, b, p0)], mu, nu, x, y, z, direction)[0]
+
+
+def _tractions(ellipses, mu, nu, x, y, z, direction):
+    """The sliding fields of the traction mu p over each ellipse (a, b, p0) [Pa], for
+    checked inputs (float64 arrays or floats): one stress tensor array per ellipse."""
+    shape = np.broadcast_shapes(*(np.shape(v) for v in (mu, nu, x, y, z, direction)),
+                                *(np.shape(v) for e in ellipses for v in e))
+
+    def flat(v):
+        return np.broadcast_to(v, shape).reshape(-1)
+
+    nu_, x_, y_, z_ = (flat(v) for v in (nu, x, y, z))
     c, s = np.cos(direction), np.sin(direction)
-    out = np.zeros(shape + (3, 3))
-    index = ((0, 0), (1, 1), (2, 2), (1, 2), (0, 2), (0, 1))
-    for along_y, weight in ((False, c), (True, s)):
-        if not np.any(weight != 0):
-            continue
-        comps = _unit_field(*flat, along_y)
-        weight = np.broadcast_to(weight, shape)
-        for (i, j), comp in zip(index, comps, strict=True):
-            out[..., i, j] += weight * comp.reshape(shape)
-    for i, j in ((1, 2), (0, 2), (0, 1)):
-        out[..., j, i] = out[..., i, j]
-    out *= np.asarray(mu * p0)[..., None, None]
+    weights = [(along_y, w) for along_y, w in ((False, c), (True, s)) if np.any(w != 0)]
+    problems = [(flat(a), flat(b), nu_, x_, y_, z_, along_y)
+                for a, b, _ in ellipses for along_y, _ in weights]
+    fields = iter(_unit_fields(problems))
+    out = []
+    for _, _, p0 in ellipses:
+        total = None
+        for _, weight in weights:
+            part = np.broadcast_to(weight, shape).reshape(-1) * next(fields)
+            total = part if total is None else total + part
+        if total is None:  # no traction (direction with cos = sin = 0 cannot occur)
+            total = np.zeros((6, math.prod(shape)))
+        # (sxx, syy, szz, syz, sxz, sxy) -> the symmetric tensor, row by row
+        stress = total[[0, 5, 4, 5, 1, 3, 4, 3, 2]].T.reshape(shape + (3, 3))
+        stress *= np.asarray(mu * p0)[..., None, None]
+        out.append(stress)
     return out
 
 
@@ -333,15 +425,18 @@ def partial_slip_stress(a, b, p0, mu, nu, x, y, z, stick_ratio, direction=0.0):
         i = int(np.argmin(ok.reshape(-1)))
         raise ValueError(f"stick_ratio must be c/a in [0, 1], got "
                          f"{ratio.reshape(-1)[i].item()!r}{index_text(ratio.shape, i)}")
-    full = sliding_stress(a, b, p0, mu, nu, x, y, z, direction)
+    return _partial_slip(*_check(a, b, p0, mu, nu, x, y, z, direction), ratio)
+
+
+def _partial_slip(a, b, p0, mu, nu, x, y, z, direction, ratio):
+    """:func:`partial_slip_stress` of checked inputs (float64 arrays or floats)."""
     has_stick = ratio > 0
     if not np.any(has_stick):
-        return full
+        return _sliding(a, b, p0, mu, nu, x, y, z, direction)
     # a zero stick ellipse is replaced by a unit one with zero traction
     r = np.where(has_stick, ratio, 1.0)
-    a_, b_ = as_float_array(a, "a"), as_float_array(b, "b")
-    stick = sliding_stress(r * a_, r * b_, np.where(has_stick, r, 0.0) * as_float_array(p0, "p0"),
-                           mu, nu, x, y, z, direction)
+    full, stick = _tractions([(a, b, p0), (r * a, r * b, np.where(has_stick, r, 0.0) * p0)],
+                             mu, nu, x, y, z, direction)
     return full - stick
 
 
@@ -351,29 +446,31 @@ class SlidingMaxima:
     """The largest stresses in a body under a sliding Hertz contact (normal + friction).
 
     Stresses in Pa, positions in m in the ellipse frame (x along a, y along b, z depth).
+    Floats for one contact; arrays of the contacts' shape from
+    :meth:`hertz.Tangential.maxima` of an array of contacts.
 
     Attributes
     ----------
-    von_mises, x_von_mises, y_von_mises, z_von_mises : float
+    von_mises, x_von_mises, y_von_mises, z_von_mises : float or ndarray
         The largest von Mises stress [Pa] and where it is [m] (z = 0: on the surface).
-    tau_max, x_tau_max, y_tau_max, z_tau_max : float
+    tau_max, x_tau_max, y_tau_max, z_tau_max : float or ndarray
         The largest principal shear stress (s1 - s3)/2 (Tresca/2) [Pa] and where it is [m].
-    tensile, x_tensile, y_tensile : float
+    tensile, x_tensile, y_tensile : float or ndarray
         The largest principal stress on the surface [Pa] (tension, at the trailing edge)
         and where it is [m].
     """
 
-    von_mises: float
-    x_von_mises: float
-    y_von_mises: float
-    z_von_mises: float
-    tau_max: float
-    x_tau_max: float
-    y_tau_max: float
-    z_tau_max: float
-    tensile: float
-    x_tensile: float
-    y_tensile: float
+    von_mises: float | np.ndarray
+    x_von_mises: float | np.ndarray
+    y_von_mises: float | np.ndarray
+    z_von_mises: float | np.ndarray
+    tau_max: float | np.ndarray
+    x_tau_max: float | np.ndarray
+    y_tau_max: float | np.ndarray
+    z_tau_max: float | np.ndarray
+    tensile: float | np.ndarray
+    x_tensile: float | np.ndarray
+    y_tensile: float | np.ndarray
 
 
 def _principal(s):
@@ -399,11 +496,12 @@ class _Field:
         else:   # the normal kernel wants the major axis along x
             turned = point_stress(self.ratio, 1.0, 1.0, self.nu, y, x, z)
             normal = turned[..., [1, 0, 2], :][..., [1, 0, 2]]
+        # the inputs are checked (sliding_maxima) and the points the search's own
         if self.stick_ratio > 0:
-            return normal + partial_slip_stress(1.0, self.ratio, 1.0, self.mu, self.nu, x, y,
-                                                z, self.stick_ratio, self.direction)
-        return normal + sliding_stress(1.0, self.ratio, 1.0, self.mu, self.nu, x, y, z,
-                                       self.direction)
+            return normal + _partial_slip(1.0, self.ratio, 1.0, self.mu, self.nu, x, y, z,
+                                          self.direction, self.stick_ratio)
+        return normal + _sliding(1.0, self.ratio, 1.0, self.mu, self.nu, x, y, z,
+                                 self.direction)
 
     def values(self, x, y, z):
         """von Mises, (s1 - s3)/2, s1."""
@@ -506,6 +604,23 @@ def _scalar_inputs(a, b, p0, mu, nu, direction):
     return out + [float(vals[8])]
 
 
+def check_maxima_inputs(a, b, p0, mu, nu, direction, stick_ratio, shape):
+    """The inputs of :func:`sliding_maxima` for an array of contacts of ``shape``, each
+    broadcast to it and checked: the first bad element is a ValueError naming the input,
+    its value and its index in ``shape``."""
+    values = [np.broadcast_to(as_float_array(v, name), shape) for v, name in zip(
+        (a, b, p0, mu, nu, direction, stick_ratio),
+        ("a", "b", "p0", "mu", "nu", "direction", "stick_ratio"), strict=True)]
+    a, b, p0, mu, nu, direction, ratio = values
+    _check(a, b, p0, mu, nu, 0.0, 0.0, 0.0, direction)
+    ok = (ratio >= 0) & (ratio <= 1)
+    if not np.all(ok):
+        i = int(np.argmin(ok.reshape(-1)))
+        raise ValueError(f"stick_ratio must be c/a in [0, 1], got "
+                         f"{ratio.reshape(-1)[i].item()!r}{index_text(shape, i)}")
+    return values
+
+
 def sliding_maxima(a, b, p0, mu, nu, direction=0.0, stick_ratio=0.0) -> SlidingMaxima:
     """The largest stresses under a sliding Hertz contact (normal + friction), one body.
 
@@ -539,8 +654,12 @@ def sliding_maxima(a, b, p0, mu, nu, direction=0.0, stick_ratio=0.0) -> SlidingM
     searched. For a circle and nu = 0.3 the von Mises maximum leaves the depth 0.48 a for
     the surface (the trailing edge) at mu = 0.3047 (:func:`surface_von_mises_mu`). The
     values agree with an mpmath quadrature of Boussinesq's and Cerruti's solutions at the
-    positions found within 4.4e-16 p0 (tests/test_friction.py). Scalars only; about 0.4 s
-    per contact.
+    positions found within 4.4e-16 p0 (tests/test_friction.py). Scalars only (an array of
+    contacts: :meth:`hertz.Tangential.maxima`). Mostly Nelder-Mead's evaluations of the
+    field at one point (about 0.5 ms sliding, 0.7 ms in partial slip off the axes): about
+    0.4 s per contact in partial slip along a principal axis, 2.5 s at 0.5 rad off it,
+    b/a = 0.5, c/a = 0.8 (benchmarks/friction.py, AMD EPYC; 0.9 s and 9.1 s before the
+    field's evaluation at few points was batched).
 
     Examples
     --------

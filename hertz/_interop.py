@@ -136,6 +136,27 @@ class Recipe:
             value = self.registry.Quantity(value, _unit(self.registry, unit))
         return value
 
+    def wrap_points(self, value, unit: str, name: str, axis: str = "point"):
+        """``value`` of shape (n, broadcast shape): a leading axis of n points in front
+        of the inputs' shape, wrapped as the inputs were.  pandas Series: a DataFrame with a
+        row per point (index named ``axis``) and a column per element of the Series;
+        DataFrames: numpy (pandas has no third axis); xarray: a DataArray with the
+        dimension ``axis`` in front; pint: a Quantity in ``unit``."""
+        kind = self.kind
+        if kind == "series":
+            import pandas as pd
+
+            value = pd.DataFrame(value, index=pd.RangeIndex(len(value), name=axis),
+                                 columns=self.template.index, copy=False)
+        elif kind == "xarray":
+            import xarray as xr
+
+            dims, coords = self.template
+            value = xr.DataArray(value, coords=coords, dims=(axis,) + tuple(dims), name=name)
+        if self.registry is not None:
+            value = self.registry.Quantity(value, _unit(self.registry, unit))
+        return value
+
     def labelled(self, exc: ValueError) -> ValueError:
         """``exc`` with the pandas labels or xarray coordinates of the index it names."""
         found = _AT_INDEX.search(str(exc))
@@ -509,6 +530,16 @@ def call_result_method(result, method: str, arguments, unit: str, units):
     except ValueError as exc:
         raise recipe.labelled(exc) from None
     return recipe.wrap(out, unit, method)
+
+
+def fretting_loop(result, points):
+    """``FrettingLoop.loop`` of a result whose fields are pandas, xarray or pint: the loop
+    of the plain twin, its point axis in front, wrapped (:meth:`Recipe.wrap_points`)."""
+    plain, recipe = unwrap([(k, getattr(result, k), u) for k, u in FRETTING_UNITS.items()])
+    twin = type(result)(**dict(zip(FRETTING_UNITS, plain, strict=True)))
+    force, displacement = type(result).loop(twin, points)
+    return (recipe.wrap_points(force, N, "force"),
+            recipe.wrap_points(displacement, M, "displacement"))
 
 
 def _result_type(method):

@@ -10,6 +10,7 @@ scene file change any of it::
     hertz --scene my_scene.toml --angle-deg 30
     hertz --yield-strength 1.5e9 --plot stresses.png
     hertz --tangential 200 --mu 0.3          # Cattaneo-Mindlin partial slip, fretting
+    hertz --tangential 200 --mu 0.3 --direction 45   # the force 45 degrees off the major axis
 
 ``hertz --help`` ends with the scene-file format (every key, its unit and
 default) and the default scene; both are generated from ``SCENE_KEYS``,
@@ -50,8 +51,10 @@ SCENE_KEYS = (
     ("load", "N", "normal force, >= 0 (0: no contact patch, no stresses)"),
     ("approach", "m", "instead of load: the approach of the bodies (the load is computed)"),
     ("angle_deg", "deg", "angle between the bodies' x axes"),
-    ("tangential", "N", "tangential force along the ellipse's major axis, <= mu * load"),
+    ("tangential", "N", "tangential force, <= mu * load, along direction_deg"),
     ("mu", "-", "coefficient of friction, > 0 (tangential and mu: both or neither)"),
+    ("direction_deg", "deg", "angle of the tangential force from the contact ellipse's major "
+     "axis (default 0; with tangential)"),
 )
 #: The keys of the [body1] and [body2] tables: (key, unit, meaning).
 BODY_KEYS = (
@@ -63,7 +66,7 @@ BODY_KEYS = (
 _BODY_KEYS = tuple(key for key, _, _ in BODY_KEYS)
 #: Options that change the scene (the others only add output).
 _SCENE_OPTIONS = ("r1x", "r1y", "e1", "nu1", "r2x", "r2y", "e2", "nu2", "load", "approach",
-                  "angle_deg", "tangential", "mu")
+                  "angle_deg", "tangential", "mu", "direction_deg")
 #: The scene keys of the tangential force, set together or not at all.
 _TANGENTIAL_KEYS = ("tangential", "mu")
 #: A scene file is a few lines; refusing big ones keeps ``--scene /dev/zero`` from
@@ -119,13 +122,17 @@ def _parser() -> argparse.ArgumentParser:
     p.add_argument("--angle-deg", type=_number, metavar="DEG",
                    help="angle between the bodies' x axes [degrees]")
     p.add_argument("--tangential", type=_number, metavar="N",
-                   help="tangential force [N] along the contact ellipse's major axis, rising "
-                        "from 0 at constant load (with --mu): adds the no-slip tangential "
-                        "stiffness, the stick zone, the displacement, the tangent stiffness, "
-                        "whether it slides, and the energy of a fretting cycle between -N and N "
-                        "(Cattaneo-Mindlin, Mindlin-Deresiewicz)")
+                   help="tangential force [N] along --direction (default: the contact "
+                        "ellipse's major axis), rising from 0 at constant load (with --mu): "
+                        "adds the no-slip tangential stiffness, the stick zone, the "
+                        "displacement, the tangent stiffness, whether it slides, and the "
+                        "energy of a fretting cycle between -N and N (Cattaneo-Mindlin, "
+                        "Mindlin-Deresiewicz)")
     p.add_argument("--mu", type=_number, metavar="MU",
                    help="coefficient of friction [-], > 0 (with --tangential)")
+    p.add_argument("--direction", dest="direction_deg", type=_number, metavar="DEG",
+                   help="angle of the tangential force from the contact ellipse's major axis "
+                        "[degrees], default 0 (with --tangential)")
     p.add_argument("--yield-strength", type=_number, metavar="PA",
                    help="yield strength of both bodies [Pa]: adds the load at which each first "
                         "yields (von Mises and Tresca)")
@@ -179,8 +186,10 @@ def scene_toml(scene: dict, encoding: str | None = None) -> str:
              f"name = {_toml_string(scene['name'], encoding)}"]
     if "tangential" in scene:
         top += [("tangential", _toml_number(scene["tangential"]),
-                 "N along the major axis (0 <= it <= mu * load)"),
-                ("mu", _toml_number(scene["mu"]), "-, coefficient of friction")]
+                 "N along direction_deg (0 <= it <= mu * load)"),
+                ("mu", _toml_number(scene["mu"]), "-, coefficient of friction"),
+                ("direction_deg", _toml_number(scene.get("direction_deg", 0.0)),
+                 "degrees from the contact ellipse's major axis")]
     lines += _aligned(top)
     if "tangential" not in scene:
         lines.append("# tangential = 100.0  # N along the major axis, with mu = 0.3: partial "
@@ -270,7 +279,7 @@ def _read_scene(path: str) -> dict:
                 raise _UsageError(f"scene file: unknown key(s) in [{key}]: {names} "
                                   f"(allowed: {', '.join(_BODY_KEYS)})")
             merged[key].update({k: _scalar(v, f"{key}.{k}") for k, v in value.items()})
-        elif key in ("load", "approach", "angle_deg", *_TANGENTIAL_KEYS):
+        elif key in ("load", "approach", "angle_deg", *_TANGENTIAL_KEYS, "direction_deg"):
             merged[key] = _scalar(value, key)
         elif key == "name":
             if not isinstance(value, str):
@@ -343,7 +352,7 @@ def _scene(args) -> dict:
         scene.pop("load", None)
     if args.angle_deg is not None:
         scene["angle_deg"] = args.angle_deg
-    for key in _TANGENTIAL_KEYS:
+    for key in (*_TANGENTIAL_KEYS, "direction_deg"):
         if getattr(args, key) is not None:
             scene[key] = getattr(args, key)
     given = [key for key in _TANGENTIAL_KEYS if key in scene]
@@ -351,6 +360,9 @@ def _scene(args) -> dict:
         missing = "mu" if given == ["tangential"] else "tangential"
         raise _UsageError(f"--{given[0]} needs --{missing} (scene key {missing}): the "
                           "tangential force and the coefficient of friction go together")
+    if "direction_deg" in scene and not given:
+        raise _UsageError("--direction needs --tangential and --mu (scene keys tangential, "
+                          "mu): it is the direction of the tangential force")
     if not args.scene and any(getattr(args, opt) is not None for opt in _SCENE_OPTIONS):
         scene["name"] = "custom scene"
     return scene
@@ -429,13 +441,21 @@ def _fields(c) -> dict:
 
 
 def _tangential(scene, c) -> dict | None:
-    """The tangential results of the scene's force and mu (None without them): the no-slip
-    stiffness along the force, Cattaneo-Mindlin's stick ellipse, displacement and tangent
-    stiffness, whether it slides (force = mu P), and the energy of a fretting cycle
-    between -force and force (Mindlin-Deresiewicz)."""
+    """The tangential results of the scene's force, mu and direction (None without them):
+    the no-slip stiffness along the force, Cattaneo-Mindlin's stick ellipse, displacement
+    (along the force and across it) and tangent stiffness, whether it slides
+    (force = mu P), and the energy of a fretting cycle between -force and force
+    (Mindlin-Deresiewicz)."""
     if "tangential" not in scene:
         return None
     force, mu = scene["tangential"], scene["mu"]
+    degrees = scene.get("direction_deg", 0.0)
+    if not math.isfinite(degrees):
+        raise _UsageError(f"--direction must be a finite angle in degrees (scene key "
+                          f"direction_deg), got {degrees!r}")
+    # reduced to [-180, 180] degrees first, exactly (IEEE remainder is exact): the radians
+    # of a huge angle in degrees would carry its rounding into the kernel's reduction
+    direction = math.radians(math.remainder(degrees, 360.0))
     if not (0 < mu < math.inf):
         raise _UsageError(f"mu must be a positive, finite coefficient of friction, got {mu!r}")
     if not (0 <= force < math.inf):
@@ -450,11 +470,13 @@ def _tangential(scene, c) -> dict | None:
         raise _UsageError(f"tangential = {force!r} N is above mu * load = {limit!r} N: the "
                           "contact slides as a whole (partial slip needs tangential <= mu * "
                           "load)")
-    t = c.tangential(force, mu)
-    energy = c.fretting(force, mu).energy
-    out = {"force": force, "mu": mu, "direction": 0.0}  # rad from the major axis
+    t = c.tangential(force, mu, direction)
+    energy = c.fretting(force, mu, direction).energy
+    # direction: rad from the major axis, as the API takes it
+    out = {"force": force, "mu": mu, "direction": direction, "direction_deg": degrees}
     for key, value in (("no_slip_stiffness", t.no_slip_stiffness), ("stick_a", t.stick_a),
                        ("stick_b", t.stick_b), ("displacement", t.displacement),
+                       ("displacement_transverse", t.displacement_transverse),
                        ("stiffness", t.stiffness), ("fretting_energy", energy)):
         out[key] = _finite(value, f"the tangential {key}")
     out["sliding"] = bool(t.sliding)
@@ -525,14 +547,19 @@ def _json(scene, fields, stresses, tangential) -> str:
 def _tangential_table(t) -> list[str]:
     rows = [("no-slip stiffness along Q", _si(t["no_slip_stiffness"], "N/m")),
             ("stick zone semi-axes", f"{_si(t['stick_a'], 'm')}, {_si(t['stick_b'], 'm')}"),
-            ("displacement along Q", _si(t["displacement"], "m")),
-            ("tangent stiffness dQ/d(disp)", _si(t["stiffness"], "N/m")),
+            ("displacement along Q", _si(t["displacement"], "m"))]
+    if t["direction_deg"] != 0:
+        rows.append(("displacement across Q", _si(t["displacement_transverse"], "m")
+                     + " (90 deg counter-clockwise from Q)"))
+    rows += [("tangent stiffness dQ/d(disp)", _si(t["stiffness"], "N/m")),
             ("sliding", "yes: Q = mu P, the whole contact slips" if t["sliding"] else
              "no: partial slip"),
             ("fretting loop energy", f"{_si(t['fretting_energy'], 'J')} per cycle between -Q "
              "and Q")]
     width = max(len(name) for name, _ in rows) + 2
-    return [f"  tangential force Q = {_si(t['force'], 'N')} along the major axis, "
+    where = ("along the major axis" if t["direction_deg"] == 0 else
+             f"at {t['direction_deg']:g} deg from the major axis")
+    return [f"  tangential force Q = {_si(t['force'], 'N')} {where}, "
             f"mu = {t['mu']:g} (Cattaneo-Mindlin):",
             *(f"    {name:<{width}}{value}" for name, value in rows)]
 

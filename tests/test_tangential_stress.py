@@ -111,10 +111,8 @@ def test_maxima_in_partial_slip_and_of_similar_bodies():
     assert m2.tensile > 1.5 * similar.subsurface().tensile
 
 
-def test_maxima_of_an_array_of_contacts_is_a_type_error():
-    t = CONTACT.tangential(np.array([10.0, 20.0]), MU)
-    with pytest.raises(TypeError, match=r"one contact, this result holds an array of shape \(2,\)"):
-        t.maxima()
+def test_maxima_and_stress_refuse_a_bad_body():
+    # (arrays of contacts: tests/test_tangential_api.py)
     with pytest.raises(ValueError, match="body must be 1 or 2"):
         CONTACT.tangential(10.0, MU).maxima(body=3)
     with pytest.raises(ValueError, match="body must be 1 or 2"):
