@@ -28,7 +28,7 @@ import numpy as np
 
 from .errors import FEMValidationError
 from .grade_cli import OneLineParser, UsageError
-from .mesh import DEFAULT_LEVEL, LEVEL_H0, LEVEL_RATIO, LEVEL_SCALE, build, mirrored
+from .mesh import DEFAULT_LEVEL, LEVEL_H0, LEVEL_RATIO, LEVEL_SCALE
 from .output import prepare_out
 from .scenes import MAX_ALPHA, equal_steel
 
@@ -61,11 +61,11 @@ def mesh_axis(scene, axis: str) -> str:
 def run(scene, level: int, mu: float, ratio: float, axis: str, ramp_steps: int, out: Path,
         command: str = "") -> dict:
     """Mesh, solve, grade and write one frictional run; its report row."""
-    from .friction import friction_result, solve_friction
+    from .friction import friction_mesh, friction_result, solve_friction
     from .grade_tangential import grade_tangential, write_grade
 
     t0 = time.perf_counter()
-    mesh = mirrored(build(scene, level))
+    mesh = friction_mesh(scene, level)
     sol = solve_friction(scene, mesh, mu, mesh_axis(scene, axis), ratio=ratio,
                          ramp_steps=ramp_steps)
     result = friction_result(scene, mesh, sol)

@@ -37,7 +37,7 @@ MU = 0.3
 def coarse():
     """alpha = 1 at level 1, mirrored, a ramp of 4 steps to 0.8 mu P and the loop."""
     scene = equal_steel(1)
-    mesh = fvm.mirrored(fvm.build(scene, 1))
+    mesh = fr.friction_mesh(scene, 1)
     sol = fr.solve_friction(scene, mesh, MU, "x", ramp_steps=4)
     return scene, mesh, sol, fr.friction_result(scene, mesh, sol)
 
@@ -128,9 +128,9 @@ def test_loop_is_odd_and_returns_to_the_peak(coarse):
 
 
 #: What level 1 shows (alpha 1, 4 ramp steps), and tolerances 1.5 times that.
-OBSERVED_LEVEL1 = {"stick_a_rel_err": 0.0149, "stick_b_rel_err": 0.0471,
-                   "force_rel_err_max": 0.0124, "branch_err_max": 0.0075,
-                   "loop_energy_rel_err": 0.0076}
+OBSERVED_LEVEL1 = {"stick_a_rel_err": 0.0170, "stick_b_rel_err": 0.0466,
+                   "force_rel_err_max": 0.0276, "branch_err_max": 0.0167,
+                   "loop_energy_rel_err": 0.0090}
 
 
 def test_coarse_run_grades_within_what_level_1_shows(coarse):
@@ -176,17 +176,17 @@ def test_load_along_y_holds_the_same_invariants():
     symmetry conditions): Coulomb's inequality, no gap change, the force at the end of
     the ramp and the stick ellipse near Cattaneo-Mindlin even at level 1."""
     scene = equal_steel(3)
-    mesh = fvm.mirrored(fvm.build(scene, 1))
+    mesh = fr.friction_mesh(scene, 1)
     sol = fr.solve_friction(scene, mesh, MU, mesh_axis(scene, "major"), ramp_steps=3)
     p = sol.normal_force / mesh.pair_area
     q = np.hypot(*sol.snapshot_shear.T)
     assert np.all(q <= MU * p * (1 + 1e-8) + 1e-12 * MU * p.max())
-    # the shear across the load (Mindlin: none) is small: observed 0.085 of the largest
+    # the shear across the load (Mindlin: none) is small: observed 0.088 of the largest
     assert np.max(np.abs(sol.snapshot_shear[:, 0])) < 0.13 * np.max(sol.snapshot_shear[:, 1])
     assert sol.coupling_pressure < 1e-5 * scene.hertz(sol.normal.force).p0
     g = grade_tangential(fr.friction_result(scene, mesh, sol), scene)
     m = g.metrics
-    # observed at level 1 (3 ramp steps): stick a -1.26%, b -1.39%, ramp force +1.41%,
-    # loop energy -1.26%; bounds 1.5 times that
-    assert abs(m["stick_a_rel_err"]) < 0.019 and abs(m["stick_b_rel_err"]) < 0.021
-    assert abs(m["force_rel_err_max"]) < 0.021 and abs(m["loop_energy_rel_err"]) < 0.019
+    # observed at level 1 (3 ramp steps): stick a +0.07%, b -0.76%, ramp force +2.35%,
+    # loop energy -1.38%; bounds 1.5 times that (at least 0.5%)
+    assert abs(m["stick_a_rel_err"]) < 0.005 and abs(m["stick_b_rel_err"]) < 0.0114
+    assert abs(m["force_rel_err_max"]) < 0.035 and abs(m["loop_energy_rel_err"]) < 0.021
