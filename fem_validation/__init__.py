@@ -43,7 +43,7 @@ from .curved_mesh import DEFAULT_CURVED_LEVEL, CurvedScene, ball_groove, build_c
 from .errors import FEMValidationError
 from .friction import FrictionSolution, friction_result, solve_friction
 from .grade import DEFAULT_TOLERANCES, Grade  # the function: fem_validation.grade.grade
-from .grade_tangential import TangentialGrade, grade_tangential
+from .grade_tangential import TangentialGrade  # the function: grade_tangential.grade_tangential
 from .mesh import DEFAULT_LEVEL, LEVEL_H0, LEVEL_SCALE, BlockMesh, build, mirrored
 from .output import plot_profiles, write_reports, write_vtu
 from .result import BodyStress, ContactFrame, ContactResult, ResultError
@@ -99,7 +99,6 @@ __all__ = [
     "default_scenes",
     "equal_steel",
     "friction_result",
-    "grade_tangential",
     "mirrored",
     "run_curved",
     "scene_from_toml",
