@@ -41,7 +41,6 @@ from dataclasses import dataclass, field
 
 import numpy as np
 from scipy import sparse
-from scipy.sparse.linalg import cg
 
 from .elasticity import rigid_body_modes, stiffness
 from .errors import FEMValidationError
@@ -49,13 +48,11 @@ from .mesh import BlockMesh
 from .scenes import Scene
 from .solve import (
     AMG_MODES,
-    CG_MAXITER,
-    CG_RTOL,
     KAPPA,
-    LOOSE_REDUCTION,
     SETTLED_FRACTION,
     ContactSolution,
     _amg,
+    cg_solve,
     solve_contact,
 )
 
@@ -434,24 +431,14 @@ def solve_friction(scene: Scene, mesh: BlockMesh, mu: float, axis: str = "x",
                                     np.where(sliding[:, None], -slide_force, 0.0))
             b = system.rhs(top, load1)
             x[system.fixed] = b[system.fixed]
-            count = [0]
-
-            def step(_xk, count=count):
-                count[0] += 1
-
-            t2 = time.perf_counter()
-            bnorm = np.linalg.norm(b)
-            atol = 0.0 if accurate else LOOSE_REDUCTION * np.linalg.norm(b - A @ x)
-            x, info = cg(A, b, x0=x, rtol=CG_RTOL, atol=atol, maxiter=CG_MAXITER,
-                         M=preconditioner, callback=step)
-            seconds["cg"] += time.perf_counter() - t2
-            residual = np.linalg.norm(b - A @ x) / bnorm
-            if info != 0 or not residual < 10 * max(CG_RTOL, atol / bnorm):
+            x, count, info, residual, rtol = cg_solve(A, b, x, preconditioner, accurate,
+                                                      seconds)
+            if info != 0 or not residual < 10 * rtol:
                 raise FEMValidationError(
                     f"{scene.name}: conjugate gradients did not converge at step {n_step}, "
                     f"stick iteration {iteration} (info {info}, relative residual "
                     f"{residual:.2e})")
-            cg_counts.append(count[0])
+            cg_counts.append(count)
             rel = system.relative(x)
             trial, new_stick, new_dir, size = _trial(k_pair, rel, slip, limit, active)
             # a sliding pair whose slip reverses between two iterations sticks for the next
@@ -465,7 +452,7 @@ def solve_friction(scene: Scene, mesh: BlockMesh, mu: float, axis: str = "x",
             log.info("%s: step %d (top %.3e m), iteration %d: %d stick, %d sliding, "
                      "%d changed, largest turn %.1e, %d CG iterations (%.1f s)", scene.name,
                      n_step, top, iteration, new_stick.sum(), now_sliding.sum(), changed,
-                     turn, count[0], time.perf_counter() - t1)
+                     turn, count, time.perf_counter() - t1)
             done = changed == 0 and turn <= DIRECTION_TOL
             stick, direction = new_stick, new_dir
             if done and accurate:

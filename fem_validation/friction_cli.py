@@ -73,7 +73,7 @@ def run(scene, level: int, mu: float, ratio: float, axis: str, ramp_steps: int, 
     seconds = time.perf_counter() - t0
     write_grade(g, out / f"{scene.name}-{axis}", command)
     c = scene.hertz(sol.normal.force)
-    return {"scene": scene.name, "level": level, "axis": axis, "alpha": float(c.alpha),
+    row = {"scene": scene.name, "level": level, "axis": axis, "alpha": float(c.alpha),
             "mu": mu, "load": sol.normal.force,
             "ratio": float(sol.force[sol.snapshot] / (mu * sol.normal.force)),
             "metrics": {k: v for k, v in g.metrics.items()}, "passed": g.passed,
@@ -83,7 +83,31 @@ def run(scene, level: int, mu: float, ratio: float, axis: str, ramp_steps: int, 
             "cg_iterations": int(sum(sum(s.cg_iterations) for s in sol.steps)),
             "amg_setups": sol.amg_setups, "coupling_pressure_over_p0":
             sol.coupling_pressure / c.p0, "seconds": seconds,
-            "h0_over_b": mesh.h0 / scene.hertz().b}
+            "h0_over_b": mesh.h0 / scene.hertz().b, "command": command}
+    (out / f"{scene.name}-{axis}" / "row.json").write_text(json.dumps(row, indent=1,
+                                                                      default=float))
+    return row
+
+
+def row_from_grade(directory: Path) -> dict:
+    """A report row from a run's directory: its grade.json (the metrics, the force, the
+    command) and, when the run wrote it, row.json (the solver's counts and time)."""
+    directory = Path(directory)
+    try:
+        g = json.loads((directory / "grade.json").read_text())
+    except (OSError, ValueError) as exc:
+        raise ValueError(f"--collect: cannot read {directory / 'grade.json'}: {exc}") from None
+    if g.get("kind") != "tangential":
+        raise ValueError(f"--collect: {directory / 'grade.json'} is not a tangential grade")
+    solver = {}
+    if (directory / "row.json").is_file():
+        solver = json.loads((directory / "row.json").read_text())
+    level = solver.get("level", g["source"].rsplit("level ", 1)[-1])
+    return {"scene": g["scene"], "level": level, "axis": directory.name.rsplit("-", 1)[-1],
+            "load": g["normal_force"], "ratio": g["fem"]["snapshot_force_ratio"],
+            "metrics": {c["name"]: c["value"] for c in g["checks"]},
+            "passed": g["passed"], "command": g.get("command", ""),
+            **{k: solver.get(k) for k in ("dofs", "iterations", "seconds")}}
 
 
 def _cell(key: str, value) -> str:
@@ -100,7 +124,8 @@ def table(rows: list[dict]) -> str:
     for r in rows:
         cells = [r["scene"], str(r["level"]), r["axis"], f"{r['load']:.4g}",
                  f"{r['ratio']:.3f}", *[_cell(k, r["metrics"].get(k)) for k, _ in COLUMNS],
-                 str(r["dofs"]), str(r["iterations"]), f"{r['seconds']:.0f}"]
+                 *[("-" if r.get(k) is None else fmt.format(r[k]))
+                   for k, fmt in (("dofs", "{}"), ("iterations", "{}"), ("seconds", "{:.0f}"))]]
         lines.append("| " + " | ".join(cells) + " |")
     return "\n".join(lines)
 
@@ -177,6 +202,9 @@ def _parser() -> OneLineParser:
     p.add_argument("--levels", type=int, nargs="+", default=None,
                    help=f"levels of the study (default "
                         f"{' '.join(map(str, DEFAULT_STUDY_LEVELS))})")
+    p.add_argument("--collect", type=Path, nargs="+", metavar="RUN",
+                   help="no run: one table from earlier runs' directories (DIR/<scene>-<axis>, "
+                        "each with its grade.json), e.g. to join runs made in parallel")
     p.add_argument("--out", type=Path, default=Path("fem_out"), help="output directory")
     p.add_argument("--readme", action="store_true",
                    help="also put the table into docs/explanation/fem-friction.md and the "
@@ -231,6 +259,18 @@ def main(argv: list[str]) -> int:
 
     try:
         args = _parser().parse_args(argv)
+        if args.collect:
+            rows = [row_from_grade(d) for d in args.collect]
+            commands = list(dict.fromkeys(r["command"] for r in rows if r["command"]))
+            text = ("Collected from " + "; ".join(f"`{c}`" for c in commands)
+                    + f" (`python -m fem_validation friction {' '.join(argv)}`).\n\n"
+                    + table(rows) + "\n")
+            print(text)
+            if args.readme:
+                publish("fem-friction", text,
+                        [(d / "grade.png", f"{r['scene']}-{r['axis']}_friction.png")
+                         for d, r in zip(args.collect, rows, strict=True)])
+            return 0 if all(r["passed"] for r in rows) else 1
         alphas = _check(args)
         if args.readme:
             readme_section("fem-friction-study" if args.study else "fem-friction")

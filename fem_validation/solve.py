@@ -252,6 +252,34 @@ def _amg(A, B):
     return ml.aspreconditioner(cycle="V")
 
 
+def cg_solve(A, b: np.ndarray, x: np.ndarray, preconditioner, accurate: bool,
+             seconds: dict) -> tuple[np.ndarray, int, int, float, float]:
+    """One preconditioned CG solve of A x = b from ``x``.
+
+    Accurate: to |r| <= CG_RTOL |b|; loose: until the residual has fallen
+    1/LOOSE_REDUCTION times.  Adds its wall time to ``seconds["cg"]``.
+
+    Returns
+    -------
+    x, iterations, info, residual, rtol
+        The solution, CG's iterations and status, the relative residual reached and
+        the relative tolerance asked (the caller refuses residual >= 10 rtol).
+    """
+    count = [0]
+
+    def step(_xk):
+        count[0] += 1
+
+    t0 = time.perf_counter()
+    bnorm = np.linalg.norm(b)
+    atol = 0.0 if accurate else LOOSE_REDUCTION * np.linalg.norm(b - A @ x)
+    x, info = cg(A, b, x0=x, rtol=CG_RTOL, atol=atol, maxiter=CG_MAXITER, M=preconditioner,
+                 callback=step)
+    seconds["cg"] += time.perf_counter() - t0
+    residual = np.linalg.norm(b - A @ x) / bnorm
+    return x, count[0], info, residual, max(CG_RTOL, atol / bnorm)
+
+
 @dataclass
 class ActiveSetResult:
     """What :func:`iterate_active_set` leaves: the solution, the final gap and active set,
@@ -317,32 +345,19 @@ def iterate_active_set(name: str, system_for: Callable, gap_of: Callable, active
             preconditioner, built_on = _amg(A, B), active.copy()
             setups += 1
             seconds["amg setup"] += time.perf_counter() - t1
-        count = [0]
-
-        def step(_xk, count=count):
-            count[0] += 1
-
-        t2 = time.perf_counter()
-        bnorm = np.linalg.norm(b)
-        # accurate: |r| <= CG_RTOL |b|; loose: the residual reduced LOOSE_REDUCTION times
-        atol = 0.0 if accurate else LOOSE_REDUCTION * np.linalg.norm(b - A @ x)
-        x, info = cg(A, b, x0=x, rtol=CG_RTOL, atol=atol, maxiter=CG_MAXITER,
-                     M=preconditioner, callback=step)
-        seconds["cg"] += time.perf_counter() - t2
-        residual = np.linalg.norm(b - A @ x) / bnorm
-        rtol = max(CG_RTOL, atol / bnorm)
+        x, count, info, residual, rtol = cg_solve(A, b, x, preconditioner, accurate, seconds)
         if info != 0 or not residual < 10 * rtol:
             raise FEMValidationError(
                 f"{name}: conjugate gradients did not converge at active-set iteration "
-                f"{iteration} (info {info}, {count[0]} iterations, relative residual "
+                f"{iteration} (info {info}, {count} iterations, relative residual "
                 f"{residual:.2e}, {len(x)} dofs, {active.sum()} active {what})")
-        cg_iterations.append(count[0])
+        cg_iterations.append(count)
         gap = gap_of(x)
         new_active = gap < 0
         changed = int(np.sum(new_active != active))
         log.info("%s: active-set iteration %d: %d active %s, %d changed, %d CG iterations "
                  "to %.0e (%.1f s)", name, iteration, new_active.sum(), what, changed,
-                 count[0], rtol, time.perf_counter() - t1)
+                 count, rtol, time.perf_counter() - t1)
         if changed == 0 and accurate:
             return ActiveSetResult(x, gap, active, iteration, cg_iterations, setups)
         if accurate and any(np.array_equal(new_active, s) for s in seen):

@@ -190,3 +190,22 @@ def test_load_along_y_holds_the_same_invariants():
     # loop energy -1.38%; bounds 1.5 times that (at least 0.5%)
     assert abs(m["stick_a_rel_err"]) < 0.005 and abs(m["stick_b_rel_err"]) < 0.0114
     assert abs(m["force_rel_err_max"]) < 0.035 and abs(m["loop_energy_rel_err"]) < 0.021
+
+
+def test_collect_joins_graded_runs(coarse, tmp_path, capsys):
+    """--collect builds the table from a run directory's grade.json, the values the grade
+    holds, printed as percentages."""
+    from fem_validation.friction_cli import main
+    from fem_validation.grade_tangential import write_grade
+
+    scene, mesh, sol, result = coarse
+    g = grade_tangential(result, scene)
+    write_grade(g, tmp_path / "alpha-1-major", "python -m fem_validation friction (test)")
+    status = main(["--collect", str(tmp_path / "alpha-1-major")])
+    out = capsys.readouterr().out
+    assert status == (0 if g.passed else 1)
+    row = [line for line in out.splitlines() if line.startswith("| alpha-1 ")][0]
+    assert f"{100 * g.metrics['stick_a_rel_err']:+.2f}%" in row
+    assert f"{100 * g.metrics['loop_energy_rel_err']:+.2f}%" in row
+    assert "python -m fem_validation friction (test)" in out
+    assert main(["--collect", str(tmp_path / "missing")]) == 2
