@@ -98,7 +98,7 @@ def write_deck(scene: Scene, fmt: str, out, units: str = "mm", level: int = DEFA
     friction_ratio : float
         Q*/(mu P) at the end of the ramp (Cattaneo-Mindlin), in (0, 1).
     friction_increments : int
-        Increments of the ramp (unloading and reloading: twice as many each).
+        Increments of the ramp (unloading 2n, reloading 2n + 1: one past the peak).
 
     Returns
     -------
@@ -165,8 +165,9 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
     f.add_argument("--friction-ratio", type=float, default=0.8, metavar="RATIO",
                    help="Q*/(mu P) at the end of the ramp, in (0, 1) (default 0.8)")
     f.add_argument("--friction-increments", type=int, default=DEFAULT_FRICTION_INCREMENTS,
-                   metavar="N", help="increments of the ramp; unloading and reloading take "
-                                     f"2N each (default {DEFAULT_FRICTION_INCREMENTS})")
+                   metavar="N", help="increments of the ramp; unloading takes 2N, reloading "
+                                     "2N + 1 (one past the peak, so that the loop closes) "
+                                     f"(default {DEFAULT_FRICTION_INCREMENTS})")
 
 
 def run(args: argparse.Namespace, command: str | None = None) -> int:

@@ -38,8 +38,9 @@ class FrictionPath:
 
     After the normal step, body 1's moved face goes along x to ``peak`` in
     ``increments`` increments (the ramp), to -``peak`` in 2 ``increments``
-    (unloading) and back to ``peak`` in 2 ``increments`` (reloading), with
-    the result written at every increment.
+    (unloading) and back to ``peak`` and one increment beyond in
+    2 ``increments`` + 1 (reloading: the loop closes whatever force the
+    reloading reaches at ``peak``), with the result written at every increment.
 
     Attributes
     ----------
@@ -245,7 +246,10 @@ def _friction_steps(model: DeckModel, friction: FrictionPath, ul: float) -> list
     out += ["*STEP, INC=100", "*STATIC", "1., 1., 1e-5, 1.", "*BOUNDARY",
             "MOVED, 1, 1, 0.", f"MOVED, 3, 3, {_g(-model.approach * ul)}", *output,
             "*END STEP"]
-    for target, count in ((peak, n), (f"-{peak}", 2 * n), (peak, 2 * n)):
+    # the reloading goes one increment past the peak, so that the loop closes whatever
+    # the force reached there (Masing's memory: the path then continues on the ramp's curve)
+    beyond = _g(friction.peak * (1 + 1 / n) * ul)
+    for target, count in ((peak, n), (f"-{peak}", 2 * n), (beyond, 2 * n + 1)):
         out += ["*STEP, INC=1000", "*STATIC, DIRECT", f"{_g(1 / count)}, 1.", "*BOUNDARY",
                 f"MOVED, 1, 1, {target}", *output, "*END STEP"]
     return out

@@ -234,7 +234,7 @@ def problem(model: DeckModel, units: str = "mm", files: dict | None = None,
             "stick_slope_note": "CalculiX *FRICTION lambda: shear stress per unit elastic "
                                 "slip, here the normal penalty slope",
             "steps": ["normal approach", "ramp 0 -> peak", "unloading peak -> -peak",
-                      "reloading -peak -> peak"],
+                      "reloading -peak -> peak (1 + 1/ramp_increments)"],
             "peak_note": "Mindlin's displacement at Q = ratio mu P (the scene's target load) "
                          "less the Cerruti settlement Q (3 - 2 nu)/(8 pi G H) of each "
                          "clamped block of depth H"}}),
