@@ -225,7 +225,10 @@ def run(argv: list[str]) -> int:
     out = output.prepare_out(args.out)
     scene = scene_from_toml(args.scene)
     if args.tangential is not None:
-        from . import grade_tangential as gt
+        # not "from . import grade_tangential": the package exports the function of that name
+        import importlib
+
+        gt = importlib.import_module(".grade_tangential", __package__)
         from .readers.tangential_csv import read_tangential
 
         tol = tolerances_from(args, gt.DEFAULT_TOLERANCES, gt.METRICS)
