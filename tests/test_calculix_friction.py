@@ -236,3 +236,17 @@ def test_friction_deck_runs_in_ccx_and_grades(scene, tmp_path):
     assert ratio > 1.015
     assert math.isclose((1 + off.metrics["loop_energy_rel_err"])
                         / (1 + m["loop_energy_rel_err"]), ratio, rel_tol=1e-9)
+
+
+def test_grade_frd_bad_input(scene, tmp_path, capsys):
+    """grade --tangential RUN.frd: options that the .frd answers, and a missing file."""
+    from fem_validation import grade_cli
+
+    frd = tmp_path / "hertz.frd"
+    base = ["--tangential", str(frd), "--scene", str(scene[0]), "--out", str(tmp_path / "g")]
+    for extra, word in ((["--history", "h.csv"], "--history"),
+                        (["--normal-force", "3"], "--normal-force"),
+                        ([], "cannot read")):
+        assert grade_cli.main(base + extra) == 2
+        err = capsys.readouterr().err
+        assert err.count("\n") == 1 and word in err, err
