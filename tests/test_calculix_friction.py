@@ -12,6 +12,7 @@ from __future__ import annotations
 
 import json
 import math
+import os
 import re
 import shutil
 import subprocess
@@ -174,21 +175,25 @@ def test_friction_deck_bad_input(scene, tmp_path, capsys, argv, message):
 #: so the path is as short as a loop allows; the loop energy's trapezoid rule then errs by
 #: about -1/m^2 with m = 2 steps per branch (see fem_validation.grade_tangential).
 SLOW_INCREMENTS = 1
-#: What ccx 2.20 gave at level 0 with SLOW_INCREMENTS (see the test's docstring); the
-#: bounds are 1.5 times these.
-OBSERVED = {}
+#: What ccx 2.20 gave at level 0 with SLOW_INCREMENTS (882 s of ccx CPU on one thread,
+#: 52 Newton iterations); the bounds are 1.5 times these.  The loop energy is the
+#: trapezoid rule's own -1/m^2 at m = 2 (-25% on exact data).
+OBSERVED = {"stick_a_rel_err": 0.0225, "stick_b_rel_err": -0.0128,
+            "force_rel_err_max": -0.0704, "branch_err_max": 0.0749,
+            "loop_energy_rel_err": -0.226, "traction_rms_major": 0.0488,
+            "traction_rms_minor": 0.0480, "transverse_shear_max": 0.0792,
+            "pressure_integral_rel_err": 0.0245, "shear_integral_rel_err": 0.0304}
 
 
 @pytest.mark.slow
 @needs_ccx
 def test_friction_deck_runs_in_ccx_and_grades(scene, tmp_path):
-    """deck --friction -> ccx -> .frd -> reader -> tangential grade, with sanity bounds."""
-    from dataclasses import replace
+    """deck --friction -> ccx -> .frd -> reader -> tangential grade, with sanity bounds.
 
+    Costly: ccx 2.20 took 882 s of CPU (one thread, 52 Newton iterations on an
+    unsymmetric system of 17 076 nodes) for this shortest loop at level 0.
+    """
     from fem_validation.__main__ import main
-    from fem_validation.grade_tangential import grade_tangential
-    from fem_validation.readers.calculix_friction import read_calculix_tangential
-    from fem_validation.readers.frd import read_frd
 
     scene_file, sc = scene
     out = tmp_path / "deck"
@@ -197,9 +202,21 @@ def test_friction_deck_runs_in_ccx_and_grades(scene, tmp_path):
                  "--friction-increments", str(SLOW_INCREMENTS)]) == 0
     t0 = time.perf_counter()
     run = subprocess.run([CCX, "-i", "hertz"], cwd=out, capture_output=True, text=True,
-                         timeout=1200, env={"OMP_NUM_THREADS": "2", "PATH": "/usr/bin:/bin"})
+                         timeout=1500, env={"PATH": "/usr/bin:/bin", "OMP_NUM_THREADS":
+                                            os.environ.get("OMP_NUM_THREADS", "2")})
     seconds = time.perf_counter() - t0
     assert run.returncode == 0 and "Job finished" in run.stdout, run.stdout[-2000:]
+
+    check_run(out, sc, seconds)
+
+
+def check_run(out, sc, seconds=math.nan):
+    """The slow test's checks on a finished run in ``out`` (callable on any such run)."""
+    from dataclasses import replace
+
+    from fem_validation.grade_tangential import grade_tangential
+    from fem_validation.readers.calculix_friction import read_calculix_tangential
+    from fem_validation.readers.frd import read_frd
 
     result = read_calculix_tangential(out / "hertz.frd")
     assert result.symmetry == "half" and result.multiplicity == 2
@@ -217,8 +234,9 @@ def test_friction_deck_runs_in_ccx_and_grades(scene, tmp_path):
     for r, q in zip(forc, result.force, strict=True):
         q_fixed = -2 * r.component("F1")[np.isin(r.nodes, fixed)].sum()
         assert abs(q_fixed - q) <= 1e-3 * abs(result.force).max()
-    # the normal force holds along the path (elastically similar bodies do not couple)
-    assert result.details["normal_force_change"] < 1e-3
+    # the normal force holds along the path (elastically similar bodies do not couple;
+    # observed 1.3e-4)
+    assert result.details["normal_force_change"] < 2e-4
     # the peak reaches Q close to ratio mu P (the deck aims at 0.8 at the target load)
     assert 0.6 < result.force[SLOW_INCREMENTS] / (0.3 * result.normal_force) < 0.9
 
@@ -228,7 +246,7 @@ def test_friction_deck_runs_in_ccx_and_grades(scene, tmp_path):
         assert abs(m[name]) <= 1.5 * abs(observed), (name, m[name], observed, seconds)
 
     # a reference 2% off in mu moves the loop energy metric as Mindlin-Deresiewicz says:
-    # (1 + e') / (1 + e) = W(mu) / W(1.02 mu) at the result's own Q* (about +2.6% here)
+    # (1 + e') / (1 + e) = W(mu) / W(1.02 mu) at the result's own Q* (+4.6% here)
     off = grade_tangential(replace(result, mu=1.02 * result.mu), sc)
     c = sc.hertz(result.normal_force)
     q_star = g.fem["amplitude"]
