@@ -4,8 +4,10 @@ The deck (``deck --friction MU``) is a half model of paraboloid-faced blocks
 (the mirror image of the quarter model in x = 0) with a normal step and a
 tangential path along x; it is checked against geometry (the mirror), and its
 peak displacement against Mindlin's closed form for a circle written out here.
-The slow test writes a deck, runs ccx, reads the run into a TangentialResult
-and grades it; its bounds are 1.5x what ccx 2.20 gave at level 0.
+The reader is checked on a committed ccx run of two cubes driven into sliding
+(tests/data/calculix/tet_cubes_friction.*), where Coulomb's law alone gives the
+answer.  The slow test writes a deck, runs ccx, reads the run into a
+TangentialResult and grades it; its bounds are 1.5x what ccx 2.20 gave at level 0.
 """
 
 from __future__ import annotations
@@ -17,10 +19,12 @@ import re
 import shutil
 import subprocess
 import time
+from pathlib import Path
 
 import numpy as np
 import pytest
 
+DATA = Path(__file__).parent / "data" / "calculix"
 CCX = shutil.which("ccx")
 needs_ccx = pytest.mark.skipif(CCX is None, reason="ccx (CalculiX, Debian package "
                                "calculix-ccx) is not installed")
@@ -268,3 +272,44 @@ def test_grade_frd_bad_input(scene, tmp_path, capsys):
         assert grade_cli.main(base + extra) == 2
         err = capsys.readouterr().err
         assert err.count("\n") == 1 and word in err, err
+
+
+# --- the reader on a committed run -------------------------------------------------------
+
+def test_reader_on_sliding_cubes():
+    """tet_cubes_friction.inp (ccx 2.20 wrote its .frd): two cubes pressed together, then
+    the upper one driven along x far enough to slide, back and forth.  Sliding is where the
+    answer is known without Mindlin: |q| = mu p at every pressed node, q along the motion;
+    the shear's sign is the reader's convention (body 1 on body 2: +x while body 1 moves
+    +x); the force is body 1's push, which body 2's clamped face takes back."""
+    from fem_validation.readers.calculix_friction import read_calculix_tangential
+    from fem_validation.readers.frd import read_frd
+
+    path = DATA / "tet_cubes_friction.frd"
+    # the cubes lie in x, y >= 0: without the symmetry given they would pass for a quarter
+    r = read_calculix_tangential(path, symmetry="whole")
+    assert r.mu == 0.2 and r.direction == 0.0 and r.multiplicity == 1
+    assert r.reversals == (2, 6) and r.snapshot == 2
+    # no problem.json: the imposed displacement, uncorrected (mm -> m)
+    np.testing.assert_allclose(r.displacement, 1e-5 * np.array(
+        [0, 1, 2, 1, 0, -1, -2, -1, 0, 1, 2]), atol=1e-12)
+    assert r.details["compliance_correction_m_per_N"] == 0.0
+    assert np.all(r.points[:, 2] == 1e-3) and len(r.points) == 9  # the interface z = 1 mm
+    f = read_frd(path)
+    forc = [x for x in f.results if x.name == "FORC"]
+    assert len(forc) == len(r.force)
+    fixed = np.array([int(s) for s in re.findall(r"\d+", re.search(
+        r"\*NSET, NSET=FIXED\n([\d,\s]+?)\n\*", (DATA / "tet_cubes_friction.inp")
+        .read_text()).group(1))])
+    for x, q in zip(forc, r.force, strict=True):
+        assert abs(-x.component("F1")[np.isin(x.nodes, fixed)].sum() - q) < 1e-6 * r.normal_force
+    # sliding at both reversals: Q close to mu P, |q| = mu p (6-digit ASCII), q along +-x
+    for snap, sense in ((2, 1.0), (6, -1.0)):
+        s = read_calculix_tangential(path, symmetry="whole", snapshot=snap)
+        q = np.hypot(*s.shear.T)
+        assert np.all(s.pressure > 0)
+        np.testing.assert_allclose(q / s.pressure, 0.2, atol=1e-4)
+        assert np.all(sense * s.shear[:, 0] / q > 0.99)
+        assert 0.95 < sense * s.force[snap] / (0.2 * s.normal_force) <= 1.001
+    with pytest.raises(ValueError, match="snapshot must be an index 1..10"):
+        read_calculix_tangential(path, symmetry="whole", snapshot=11)
