@@ -6,10 +6,12 @@
     python -m fem_validation grade --tangential SURFACE.csv --history PATH.csv --mu 0.3
         --scene FILE.toml [--direction-deg 0] [--normal-force N] [--symmetry quarter]
         [--snapshot INDEX] --out DIR
+    python -m fem_validation grade --tangential RUN/hertz.frd --scene FILE.toml --out DIR
 
 Writes DIR/grade.json, DIR/grade.md and DIR/grade.png (``--tangential``: a frictional
 result against Cattaneo-Mindlin and Mindlin-Deresiewicz,
-:mod:`fem_validation.grade_tangential`).  Exit status 0 when every
+:mod:`fem_validation.grade_tangential`; a CalculiX .frd of a ``deck --friction`` run
+is read by :mod:`fem_validation.readers.calculix_friction`, path and all).  Exit status 0 when every
 check passes, 1 when one fails, 2 for bad input (one line on stderr naming the
 file and the field), so that other projects can run it in their CI.
 """
@@ -89,10 +91,12 @@ def parser() -> OneLineParser:
                    help="grade a normal force against approach curve (columns approach, "
                         "force) instead of a result file")
     t = p.add_argument_group("a frictional result (--tangential)")
-    t.add_argument("--tangential", type=Path, metavar="SURFACE.csv",
+    t.add_argument("--tangential", type=Path, metavar="SURFACE.csv|RUN.frd",
                    help="grade a frictional result against Cattaneo-Mindlin and "
                         "Mindlin-Deresiewicz: the contact surface at one state (columns x, y, "
-                        "z, p, qx, qy[, stick]); needs --history")
+                        "z, p, qx, qy[, stick]; needs --history), or the .frd of a CalculiX "
+                        "run of 'deck --friction' (its .inp and problem.json beside it; the "
+                        "path is read from the increments)")
     t.add_argument("--history", type=Path, metavar="PATH.csv",
                    help="the tangential path (columns displacement, force), from the "
                         "unloaded state: ramp, unloading, reloading")
@@ -190,8 +194,17 @@ def run(argv: list[str]) -> int:
     friction = {"--history": args.history, "--mu": args.mu,
                 "--direction-deg": args.direction_deg, "--normal-force": args.normal_force,
                 "--snapshot": args.snapshot}
+    frd = args.tangential is not None and args.tangential.suffix.lower() == ".frd"
+    if frd:
+        given = [k for k, v in (("--history", args.history), ("--direction-deg",
+                                                             args.direction_deg),
+                                ("--normal-force", args.normal_force)) if v is not None]
+        if given:
+            raise UsageError(f"python -m fem_validation grade: {', '.join(given)} do(es) not "
+                             f"apply to --tangential RUN.frd (the .frd holds the path, the "
+                             f"direction and the normal force)")
     if args.tangential is not None:
-        if args.history is None:
+        if args.history is None and not frd:
             raise UsageError("python -m fem_validation grade: --tangential needs --history "
                              "PATH.csv (columns displacement, force)")
         normal_only = {"--force": args.force, "--pressure-field": args.pressure_field,
@@ -212,7 +225,10 @@ def run(argv: list[str]) -> int:
     out = output.prepare_out(args.out)
     scene = scene_from_toml(args.scene)
     if args.tangential is not None:
-        from . import grade_tangential as gt
+        # not "from . import grade_tangential": the package exports the function of that name
+        import importlib
+
+        gt = importlib.import_module(".grade_tangential", __package__)
         from .readers.tangential_csv import read_tangential
 
         tol = tolerances_from(args, gt.DEFAULT_TOLERANCES, gt.METRICS)
@@ -221,11 +237,20 @@ def run(argv: list[str]) -> int:
                                    ("normal", args.normal), ("x_axis", args.x_axis)) if v}
         if len(frame) == 3:
             frame = ContactFrame(**frame, source=str(args.tangential))
-        result = read_tangential(args.tangential, args.history, units=args.units,
-                                 symmetry=args.symmetry, normal_force=args.normal_force,
-                                 mu=args.mu, direction_deg=args.direction_deg,
-                                 snapshot=args.snapshot, frame=frame,
-                                 default_normal_force=scene.load)
+        if frd:
+            from .readers.calculix_friction import read_calculix_tangential
+
+            result = read_calculix_tangential(args.tangential, units=args.units,
+                                              mu=args.mu, symmetry=args.symmetry,
+                                              snapshot=args.snapshot,
+                                              frame=frame if isinstance(frame, ContactFrame)
+                                              else None)
+        else:
+            result = read_tangential(args.tangential, args.history, units=args.units,
+                                     symmetry=args.symmetry, normal_force=args.normal_force,
+                                     mu=args.mu, direction_deg=args.direction_deg,
+                                     snapshot=args.snapshot, frame=frame,
+                                     default_normal_force=scene.load)
         g = gt.grade_tangential(result, scene, tol)
         json_path, md_path, png_path = gt.write_grade(g, out, command)
         verdict = "PASSED" if g.passed else "FAILED: " + ", ".join(

@@ -13,6 +13,7 @@ Both dialects share the model data (``*NODE``, ``*ELEMENT, TYPE=C3D10``,
 from __future__ import annotations
 
 import math
+from dataclasses import dataclass
 
 import numpy as np
 
@@ -23,6 +24,98 @@ UNITS = {"SI": {"length": 1.0, "force": 1.0, "stress": 1.0,
                 "names": {"length": "m", "force": "N", "stress": "Pa"}},
          "mm": {"length": 1e3, "force": 1.0, "stress": 1e-6,
                 "names": {"length": "mm", "force": "N", "stress": "MPa"}}}
+
+
+#: Increments of the frictional ramp; unloading takes twice as many, reloading one more.
+#: ccx 2.20 needed about 100 s of CPU per increment at level 0 (unsymmetric SPOOLES,
+#: 4-8 Newton iterations each): 2 gives a loop of 11 path points in about 20 minutes.
+DEFAULT_FRICTION_INCREMENTS = 2
+#: Stick slope of the penalty friction over the normal penalty slope.
+STICK_SLOPE_FACTOR = 1.0
+
+
+@dataclass(frozen=True)
+class FrictionPath:
+    """The tangential steps of a frictional deck (SI).
+
+    After the normal step, body 1's moved face goes along x to ``peak`` in
+    ``increments`` increments (the ramp), to -``peak`` in 2 ``increments``
+    (unloading) and back to ``peak`` and one increment beyond in
+    2 ``increments`` + 1 (reloading: the loop closes whatever force the
+    reloading reaches at ``peak``), with the result written at every increment.
+
+    Attributes
+    ----------
+    mu : float
+        Coefficient of friction [-].
+    ratio : float
+        Q/(mu P) that Cattaneo-Mindlin gives at ``peak`` [-].
+    peak : float
+        Imposed tangential displacement at the end of the ramp [m]: Mindlin's
+        displacement at Q = ratio mu P less the Cerruti settlement
+        Q (3 - 2 nu)/(8 pi G H) of each clamped block of depth H.
+    increments : int
+        Increments of the ramp.
+    stick_slope : float
+        CalculiX's stick slope lambda [Pa/m]: the tangential penalty, shear
+        stress per unit of elastic slip.
+    """
+
+    mu: float
+    ratio: float
+    peak: float
+    increments: int
+    stick_slope: float
+
+
+def friction_path(model: DeckModel, mu: float, ratio: float = 0.8,
+                  increments: int = DEFAULT_FRICTION_INCREMENTS,
+                  stick_slope_factor: float = STICK_SLOPE_FACTOR) -> FrictionPath:
+    """The tangential path of a frictional deck on a half model loaded along x.
+
+    Parameters
+    ----------
+    model : DeckModel
+        A half model of paraboloid-faced blocks (:func:`~.model.half_model`).
+    mu : float
+        Coefficient of friction, > 0.
+    ratio : float
+        Q*/(mu P) at the end of the ramp, in (0, 1).
+    increments : int
+        Ramp increments, >= 1.
+    stick_slope_factor : float
+        Stick slope over the normal penalty slope, > 0.  Default 1: the
+        tangential penalty equals the normal one (10 E*/h0), as in
+        :mod:`fem_validation.friction`; it adds an elastic slip q/lambda, about
+        1% of h0 at q = mu p0 / 10 E* scale, far below Mindlin's displacement.
+
+    Raises
+    ------
+    ValueError
+        Naming the parameter and the value.
+    """
+    from ..friction import cerruti_settlement, hertz_direction
+
+    for name, value in (("mu", mu), ("stick_slope_factor", stick_slope_factor)):
+        if not (isinstance(value, int | float) and math.isfinite(value) and value > 0):
+            raise ValueError(f"{name} must be a finite number > 0, got {value!r}")
+    if not (isinstance(ratio, int | float) and 0 < ratio < 1):
+        raise ValueError(f"friction ratio must be in (0, 1) (Q*/(mu P) at the end of the "
+                         f"ramp), got {ratio!r}")
+    if isinstance(increments, bool) or not isinstance(increments, int) or increments < 1:
+        raise ValueError(f"friction increments must be an integer >= 1, got {increments!r}")
+    if model.symmetry == "quarter" or model.geometry != "paraboloid-blocks":
+        raise ValueError(f"a frictional deck needs the half or whole model of paraboloid-faced "
+                         f"blocks (a load along x breaks the symmetry in x = 0), got a "
+                         f"{model.symmetry} model of {model.geometry}")
+    scene = model.scene
+    c = model.contact
+    force = ratio * mu * c.load
+    t = c.tangential(force, mu, hertz_direction(scene, "x"))
+    depth = model.info["block_depth"]
+    missed = sum(cerruti_settlement(force, b.E, b.nu, depth) for b in (scene.body1, scene.body2))
+    return FrictionPath(float(mu), float(ratio), float(t.displacement) - missed, increments,
+                        stick_slope_factor * model.penalty)
 
 
 def _lines(ids, per_line: int = 16) -> str:
@@ -44,7 +137,7 @@ def deck_header(model: DeckModel, units: str, dialect: str, command: str | None)
     s = model.scene
     out = [f"** hertz benchmark deck ({dialect}): {s.name}",
            f"** units: {lu}, {fu}, {su}; geometry: {model.geometry}, "
-           f"{'quarter' if model.quarter else 'whole'} model, mesh level {model.level}",
+           f"{model.symmetry} model, mesh level {model.level}",
            f"** body 1: Rx = {s.body1.Rx * ul:g}, Ry = {s.body1.Ry * ul:g} {lu}, "
            f"E = {s.body1.E * us:g} {su}, nu = {s.body1.nu:g}",
            f"** body 2: Rx = {s.body2.Rx * ul:g}, Ry = {s.body2.Ry * ul:g} {lu}, "
@@ -59,14 +152,15 @@ def deck_header(model: DeckModel, units: str, dialect: str, command: str | None)
            f"{su}/{lu} = {model.info['penalty_factor']:g} E*/h0, h0 = {model.h0 * ul:.4g} {lu}",
            f"** slave surface {model.slave}, master {model.master}; "
            f"the total force is the reaction of MOVED"
-           + (" times 4 (quarter model)" if model.quarter else "")]
+           + (f" times {model.multiplicity} ({model.symmetry} model)"
+              if model.multiplicity > 1 else "")]
     if command:
         out.append(f"** written by: {command}")
     return out
 
 
 def write_inp(model: DeckModel, path, units: str = "mm", dialect: str = "calculix",
-              command: str | None = None) -> None:
+              command: str | None = None, friction: FrictionPath | None = None) -> None:
     """Write the deck.
 
     Parameters
@@ -79,7 +173,13 @@ def write_inp(model: DeckModel, path, units: str = "mm", dialect: str = "calculi
     dialect : {"calculix", "abaqus"}
     command : str, optional
         The command line, recorded in a comment.
+    friction : FrictionPath, optional
+        Coulomb friction (``*FRICTION``) and the tangential steps after the
+        normal one (CalculiX only).
     """
+    if friction is not None and dialect != "calculix":
+        raise ValueError(f"friction decks are written for CalculiX only, got dialect "
+                         f"{dialect!r}")
     if units not in UNITS:
         raise ValueError(f"units must be one of {sorted(UNITS)}, got {units!r}")
     if dialect not in ("calculix", "abaqus"):
@@ -106,14 +206,21 @@ def write_inp(model: DeckModel, path, units: str = "mm", dialect: str = "calculi
                 f"*SOLID SECTION, ELSET=BODY{body}, MATERIAL=MATERIAL{body}"]
     out += ["*SURFACE INTERACTION, NAME=HERTZ",
             "*SURFACE BEHAVIOR, PRESSURE-OVERCLOSURE=LINEAR",
-            f"{_g(model.penalty * us / ul)}",
-            "*CONTACT PAIR, INTERACTION=HERTZ, TYPE=SURFACE TO SURFACE",
+            f"{_g(model.penalty * us / ul)}"]
+    if friction is not None:
+        out += ["*FRICTION", f"{_g(friction.mu)}, {_g(friction.stick_slope * us / ul)}"]
+    out += ["*CONTACT PAIR, INTERACTION=HERTZ, TYPE=SURFACE TO SURFACE",
             f"{model.slave}, {model.master}",
             "** fixed face, the moved face's lateral motion, symmetry planes",
-            "*BOUNDARY", "FIXED, 1, 3, 0.", "MOVED, 1, 2, 0."]
-    if model.quarter:
+            "*BOUNDARY", "FIXED, 1, 3, 0.",
+            "MOVED, 1, 2, 0." if friction is None else "MOVED, 2, 2, 0."]
+    if model.symmetry == "quarter":
         out += ["SYMX, 1, 1, 0.", "SYMY, 2, 2, 0."]
-    if dialect == "calculix":
+    elif model.symmetry == "half":
+        out += ["SYMY, 2, 2, 0."]
+    if friction is not None:
+        out += _friction_steps(model, friction, ul)
+    elif dialect == "calculix":
         out += ["*STEP, INC=100", "*STATIC, SOLVER=ITERATIVE CHOLESKY", "1., 1., 1e-5, 1.",
                 "*BOUNDARY", f"MOVED, 3, 3, {_g(-model.approach * ul)}",
                 "*NODE FILE", "U, RF", "*EL FILE", "S", "*CONTACT FILE", "CDIS, CSTR",
@@ -126,3 +233,25 @@ def write_inp(model: DeckModel, path, units: str = "mm", dialect: str = "calculi
                 "*NODE PRINT, NSET=MOVED, TOTALS=YES", "RF", "*END STEP"]
     with open(path, "w") as f:
         f.write("\n".join(out) + "\n")
+
+
+def _friction_steps(model: DeckModel, friction: FrictionPath, ul: float) -> list[str]:
+    """The normal step, then the ramp, unloading and reloading along x in fixed increments."""
+    n = friction.increments
+    peak = _g(friction.peak * ul)
+    out = [f"** Coulomb friction mu = {friction.mu:g}, stick slope {friction.stick_slope:.6g} "
+           f"Pa/m; path of MOVED along x: 0 -> {peak} ({n} increments) -> -{peak} ({2 * n}) "
+           f"-> {peak} ({2 * n}); Cattaneo-Mindlin gives Q = {friction.ratio:g} mu P at "
+           f"{peak} (Mindlin's displacement less the clamped blocks' Cerruti settlement)"]
+    output = ["*NODE FILE", "U, RF", "*CONTACT FILE", "CDIS, CSTR",
+              "*NODE PRINT, NSET=MOVED, TOTALS=ONLY", "RF"]
+    out += ["*STEP, INC=100", "*STATIC", "1., 1., 1e-5, 1.", "*BOUNDARY",
+            "MOVED, 1, 1, 0.", f"MOVED, 3, 3, {_g(-model.approach * ul)}", *output,
+            "*END STEP"]
+    # the reloading goes one increment past the peak, so that the loop closes whatever
+    # the force reached there (Masing's memory: the path then continues on the ramp's curve)
+    beyond = _g(friction.peak * (1 + 1 / n) * ul)
+    for target, count in ((peak, n), (f"-{peak}", 2 * n), (beyond, 2 * n + 1)):
+        out += ["*STEP, INC=1000", "*STATIC, DIRECT", f"{_g(1 / count)}, 1.", "*BOUNDARY",
+                f"MOVED, 1, 1, {target}", *output, "*END STEP"]
+    return out

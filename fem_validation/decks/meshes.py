@@ -159,8 +159,9 @@ def _length(value, ul: float):
 
 
 def problem(model: DeckModel, units: str = "mm", files: dict | None = None,
-            command: str | None = None) -> dict:
-    """What problem.json holds: the scene, the model, loads, contact, Hertz's values."""
+            command: str | None = None, friction=None) -> dict:
+    """What problem.json holds: the scene, the model, loads, contact, Hertz's values
+    (and, for a frictional deck, the tangential path under "friction")."""
     u = UNITS[units]
     ul, uf, us = u["length"], u["force"], u["stress"]
     s, c = model.scene, model.contact
@@ -183,9 +184,11 @@ def problem(model: DeckModel, units: str = "mm", files: dict | None = None,
               "MOVED": f"faces and nodes: {model.info['moved']}, moved by the approach",
               "FIXED": "faces and nodes: body 2's clamped face (u = 0)",
               "SLAVE": "nodes of the slave contact surface", "MASTER": "nodes of the master"}
-    if model.quarter:
+    if model.symmetry == "quarter":
         groups |= {"SYMX": "faces and nodes on x = 0 (u_x = 0)",
                    "SYMY": "faces and nodes on y = 0 (u_y = 0)"}
+    elif model.symmetry == "half":
+        groups |= {"SYMY": "faces and nodes on y = 0 (u_y = 0)"}
     group_ids = {name: i + 1 for i, name in
                  enumerate(["BODY1", "BODY2", *face_groups(model)])}
     return {
@@ -193,8 +196,8 @@ def problem(model: DeckModel, units: str = "mm", files: dict | None = None,
                   "angle_deg": math.degrees(s.angle), "load": s.load * uf},
         "units": dict(u["names"]),
         "model": {"geometry": model.geometry,
-                  "symmetry": "quarter" if model.quarter else "whole",
-                  "force_multiplier": 4 if model.quarter else 1,
+                  "symmetry": model.symmetry,
+                  "force_multiplier": model.multiplicity,
                   "level": model.level, "element": "10-node tetrahedron (C3D10 node order)",
                   "nodes": len(model.nodes), "elements": len(model.elements),
                   "element_size_at_contact": model.h0 * ul,
@@ -206,7 +209,8 @@ def problem(model: DeckModel, units: str = "mm", files: dict | None = None,
                       "body2": {"E": s.body2.E * us, "nu": s.body2.nu}},
         "loads": {"MOVED": {"u_z": -model.approach * ul, "u_x": 0.0, "u_y": 0.0},
                   "FIXED": {"u_x": 0.0, "u_y": 0.0, "u_z": 0.0},
-                  **({"SYMX": {"u_x": 0.0}, "SYMY": {"u_y": 0.0}} if model.quarter else {}),
+                  **({"SYMX": {"u_x": 0.0}, "SYMY": {"u_y": 0.0}} if model.quarter else
+                     {"SYMY": {"u_y": 0.0}} if model.symmetry == "half" else {}),
                   "approach": model.approach * ul,
                   "approach_note": "Hertz's approach at the target load less the Boussinesq "
                                    "settlement of half-spaces at the depth of the moved and "
@@ -223,11 +227,23 @@ def problem(model: DeckModel, units: str = "mm", files: dict | None = None,
                          "another force: grade at the force reached",
         "files": files or {},
         "command": command,
+        **({} if friction is None else {"friction": {
+            "mu": friction.mu, "ratio": friction.ratio, "direction": "x",
+            "peak_displacement": friction.peak * ul, "ramp_increments": friction.increments,
+            "stick_slope": friction.stick_slope * us / ul,
+            "stick_slope_note": "CalculiX *FRICTION lambda: shear stress per unit elastic "
+                                "slip, here the normal penalty slope",
+            "steps": ["normal approach", "ramp 0 -> peak", "unloading peak -> -peak",
+                      "reloading -peak -> peak (1 + 1/ramp_increments)"],
+            "peak_note": "Mindlin's displacement at Q = ratio mu P (the scene's target load) "
+                         "less the Cerruti settlement Q (3 - 2 nu)/(8 pi G H) of each "
+                         "clamped block of depth H"}}),
     }
 
 
 def write_problem(model: DeckModel, out: Path, units: str = "mm", files: dict | None = None,
-                  command: str | None = None) -> Path:
+                  command: str | None = None, friction=None) -> Path:
     path = Path(out) / "problem.json"
-    path.write_text(json.dumps(problem(model, units, files, command), indent=1) + "\n")
+    path.write_text(json.dumps(problem(model, units, files, command, friction), indent=1)
+                    + "\n")
     return path

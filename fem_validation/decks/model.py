@@ -111,6 +111,16 @@ class DeckModel:
         """Hertz's solution at the scene's target load."""
         return self.scene.hertz()
 
+    @property
+    def symmetry(self) -> str:
+        """"quarter" (x >= 0, y >= 0), "half" (y >= 0) or "whole"."""
+        return "quarter" if self.quarter else self.info.get("symmetry", "whole")
+
+    @property
+    def multiplicity(self) -> int:
+        """Copies of the model in the whole contact (the factor on its forces)."""
+        return {"quarter": 4, "half": 2, "whole": 1}[self.symmetry]
+
 
 def quadratic(p: np.ndarray, t: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """Mid-side nodes for linear tetrahedra.
@@ -395,6 +405,63 @@ def _assemble(scene, parts, sets, region, slave_body, level, *, quarter, geometr
                      penalty, h0, quarter, geometry, level, info)
 
 
+#: A quarter model's C3D10 connectivity mirrored in x = 0 (the mirror turns a tetrahedron
+#: inside out: vertices 2 and 3 swap, and the mid-side nodes follow their edges).
+_MIRROR_TET10 = [0, 2, 1, 3, 6, 5, 4, 7, 9, 8]
+#: Faces S1..S4 of the mirrored element: the old face numbers (S2 and S4 swap).
+_MIRROR_FACE = np.array([0, 1, 4, 3, 2])
+
+
+def half_model(quarter: DeckModel) -> DeckModel:
+    """The half model (y >= 0) of a quarter model: its mirror image in x = 0 added.
+
+    A tangential load along x breaks the symmetry in x = 0 but keeps the one in
+    y = 0 (the plane containing the load), so a frictional deck loaded along
+    x is a half model with u_y = 0 on y = 0 (node set SYMY).  The nodes on
+    x = 0 are shared by the two halves; every other node, element and face gets
+    a mirror image.
+
+    Parameters
+    ----------
+    quarter : DeckModel
+        A quarter model (x >= 0, y >= 0).
+
+    Returns
+    -------
+    DeckModel
+        ``quarter`` False, ``info["symmetry"] == "half"``; node set SYMX gone.
+    """
+    if not quarter.quarter:
+        raise ValueError(f"half_model needs a quarter model, got a {quarter.symmetry} one")
+    n = len(quarter.nodes)
+    x = quarter.nodes[:, 0]
+    on_plane = np.abs(x) <= 1e-12 * np.abs(quarter.nodes).max()
+    image = np.arange(n)
+    image[~on_plane] = n + np.arange(int((~on_plane).sum()))
+    nodes = np.vstack([quarter.nodes, quarter.nodes[~on_plane] * np.array([-1.0, 1.0, 1.0])])
+    mirrored = image[quarter.elements][:, _MIRROR_TET10]
+    # element order: body 1, its mirror, body 2, its mirror (each ELSET stays contiguous)
+    new_index = np.empty(len(quarter.elements), dtype=np.int64)
+    new_mirror = np.empty(len(quarter.elements), dtype=np.int64)
+    elements, body, start = [], [], 0
+    for b in (1, 2):
+        idx = np.nonzero(quarter.body == b)[0]
+        new_index[idx] = start + np.arange(len(idx))
+        new_mirror[idx] = start + len(idx) + np.arange(len(idx))
+        elements += [quarter.elements[idx], mirrored[idx]]
+        body += [np.full(2 * len(idx), b)]
+        start += 2 * len(idx)
+    surfaces = {name: (np.concatenate([new_index[e], new_mirror[e]]),
+                       np.concatenate([f, _MIRROR_FACE[f]]))
+                for name, (e, f) in quarter.surfaces.items()}
+    node_sets = {name: np.unique(np.concatenate([s, image[s]]))
+                 for name, s in quarter.node_sets.items() if name != "SYMX"}
+    return DeckModel(nodes, np.vstack(elements), np.concatenate(body), node_sets, surfaces,
+                     quarter.slave, quarter.master, quarter.scene, quarter.approach,
+                     quarter.penalty, quarter.h0, False, quarter.geometry, quarter.level,
+                     {**quarter.info, "symmetry": "half"})
+
+
 def build_model(scene: Scene, level: int, model: str = "auto", slave_body: int = 1,
                 penalty_factor: float = PENALTY_FACTOR) -> DeckModel:
     """The deck model of a scene: true curved bodies where possible, else paraboloid blocks.
@@ -406,17 +473,21 @@ def build_model(scene: Scene, level: int, model: str = "auto", slave_body: int =
         Mesh level (0 coarse): the curved levels 0-4 of
         :mod:`fem_validation.curved_mesh`, or the block levels 0-5 of
         :mod:`fem_validation.mesh`.
-    model : {"auto", "quarter", "whole"}
-        Quarter or whole model; "auto" takes the quarter model where the scene
-        allows it.  True curved bodies are quarter models only: "whole" gives
-        paraboloid-faced blocks.
+    model : {"auto", "quarter", "half", "whole"}
+        Quarter, half (y >= 0, :func:`half_model`) or whole model; "auto" takes
+        the quarter model where the scene allows it.  True curved bodies are
+        quarter models only: "half" and "whole" give paraboloid-faced blocks.
     slave_body : {1, 2}
         The body whose contact face is the slave surface.
     penalty_factor : float
         Penalty slope over E*/h0.
     """
-    if model not in ("auto", "quarter", "whole"):
-        raise ValueError(f"model must be 'auto', 'quarter' or 'whole', got {model!r}")
+    if model not in ("auto", "quarter", "half", "whole"):
+        raise ValueError(f"model must be 'auto', 'quarter', 'half' or 'whole', got {model!r}")
+    if model == "half":
+        # paraboloid-faced blocks: the tangential displacement's correction for the
+        # clamped far faces (Cerruti at the block's depth) is a block's
+        return half_model(build_block_model(scene, level, True, slave_body, penalty_factor))
     if model != "whole" and curved_scene_for(scene) is not None:
         return build_curved_model(scene, level, slave_body, penalty_factor)
     quarter = None if model == "auto" else model == "quarter"
