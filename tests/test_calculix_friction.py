@@ -191,6 +191,9 @@ OBSERVED = {"stick_a_rel_err": 0.0225, "stick_b_rel_err": -0.0128,
 
 @pytest.mark.slow
 @needs_ccx
+@pytest.mark.skipif(os.environ.get("HERTZ_CCX_FRICTION") != "1",
+                    reason="15 minutes of ccx: run with HERTZ_CCX_FRICTION=1 (CI covers the "
+                           "reader with the committed sliding-cubes run)")
 def test_friction_deck_runs_in_ccx_and_grades(scene, tmp_path):
     """deck --friction -> ccx -> .frd -> reader -> tangential grade, with sanity bounds.
 
