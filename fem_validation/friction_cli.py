@@ -99,11 +99,19 @@ def row_from_grade(directory: Path) -> dict:
         raise ValueError(f"--collect: cannot read {directory / 'grade.json'}: {exc}") from None
     if g.get("kind") != "tangential":
         raise ValueError(f"--collect: {directory / 'grade.json'} is not a tangential grade")
+    axis = directory.name.rsplit("-", 1)[-1]
+    level = int(g["source"].rsplit("level ", 1)[-1])
     solver = {}
     if (directory / "row.json").is_file():
         solver = json.loads((directory / "row.json").read_text())
-    level = solver.get("level", g["source"].rsplit("level ", 1)[-1])
-    return {"scene": g["scene"], "level": level, "axis": directory.name.rsplit("-", 1)[-1],
+    else:  # a run made before rows were kept beside the grade: its report's row
+        for report in (directory.parent / "friction.json", directory.parent.parent / "study.json"):
+            if report.is_file():
+                solver = next((r for r in json.loads(report.read_text())["rows"]
+                               if (r["scene"], r["axis"], r["level"]) == (g["scene"], axis, level)),
+                              {})
+                break
+    return {"scene": g["scene"], "level": level, "axis": axis,
             "load": g["normal_force"], "ratio": g["fem"]["snapshot_force_ratio"],
             "metrics": {c["name"]: c["value"] for c in g["checks"]},
             "passed": g["passed"], "command": g.get("command", ""),
@@ -125,7 +133,7 @@ def table(rows: list[dict]) -> str:
         cells = [r["scene"], str(r["level"]), r["axis"], f"{r['load']:.4g}",
                  f"{r['ratio']:.3f}", *[_cell(k, r["metrics"].get(k)) for k, _ in COLUMNS],
                  *[("-" if r.get(k) is None else fmt.format(r[k]))
-                   for k, fmt in (("dofs", "{}"), ("iterations", "{}"), ("seconds", "{:.0f}"))]]
+                   for k, fmt in (("dofs", "{:.0f}"), ("iterations", "{:.0f}"), ("seconds", "{:.0f}"))]]
         lines.append("| " + " | ".join(cells) + " |")
     return "\n".join(lines)
 
