@@ -132,8 +132,8 @@ def table(rows: list[dict]) -> str:
     for r in rows:
         cells = [r["scene"], str(r["level"]), r["axis"], f"{r['load']:.4g}",
                  f"{r['ratio']:.3f}", *[_cell(k, r["metrics"].get(k)) for k, _ in COLUMNS],
-                 *[("-" if r.get(k) is None else fmt.format(r[k]))
-                   for k, fmt in (("dofs", "{:.0f}"), ("iterations", "{:.0f}"), ("seconds", "{:.0f}"))]]
+                 *[("-" if r.get(k) is None else f"{r[k]:.0f}")
+                   for k in ("dofs", "iterations", "seconds")]]
         lines.append("| " + " | ".join(cells) + " |")
     return "\n".join(lines)
 

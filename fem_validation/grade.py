@@ -169,8 +169,28 @@ class Check:
                 "meaning": {**METRICS, **CURVE_METRICS}.get(self.name, ("", ""))[1]}
 
 
+class GradeMethods:
+    """What every grade answers: a metric by name, a check by name, the failures."""
+
+    def __getattr__(self, name):
+        metrics = self.__dict__.get("metrics", {})
+        if name in metrics:
+            return metrics[name]
+        raise AttributeError(f"{type(self).__name__} has no attribute {name!r}")
+
+    def check(self, name: str) -> Check:
+        """The check of metric ``name``."""
+        return next(c for c in self.checks if c.name == name)
+
+    @property
+    def failed(self) -> list[str]:
+        """Messages for the checks that failed (empty if it passed)."""
+        return [f"{self.scene}: |{c.name}| = {abs(c.value):.3g} > {c.tolerance:.3g}"
+                for c in self.checks if c.status == "fail"]
+
+
 @dataclass(frozen=True)
-class Grade:
+class Grade(GradeMethods):
     """A contact result graded against Hertz at the force it reached.
 
     Attributes
@@ -215,22 +235,6 @@ class Grade:
     stress: dict = field(default_factory=dict)
     axis_stress: dict = field(default_factory=dict, repr=False)
     details: dict = field(default_factory=dict)
-
-    def __getattr__(self, name):
-        metrics = self.__dict__.get("metrics", {})
-        if name in metrics:
-            return metrics[name]
-        raise AttributeError(f"{type(self).__name__} has no attribute {name!r}")
-
-    def check(self, name: str) -> Check:
-        """The check of metric ``name``."""
-        return next(c for c in self.checks if c.name == name)
-
-    @property
-    def failed(self) -> list[str]:
-        """Messages for the checks that failed (empty if it passed)."""
-        return [f"{self.scene}: |{c.name}| = {abs(c.value):.3g} > {c.tolerance:.3g}"
-                for c in self.checks if c.status == "fail"]
 
     def to_dict(self) -> dict:
         """grade.json: force, the metrics at the top level, passed, checks, details."""

@@ -70,7 +70,7 @@ from .grade import (
     FIT_THRESHOLD,
     MISMATCH,
     PROFILE_EXTENT,
-    Check,
+    GradeMethods,
     _checks,
     _mirror_axes,
     _tolerances,
@@ -128,7 +128,7 @@ METRICS = {
 
 
 @dataclass(frozen=True)
-class TangentialGrade:
+class TangentialGrade(GradeMethods):
     """A frictional result graded against Cattaneo-Mindlin and Mindlin-Deresiewicz.
 
     Attributes
@@ -178,22 +178,6 @@ class TangentialGrade:
     path: dict = field(default_factory=dict, repr=False)
     notes: tuple = ()
     details: dict = field(default_factory=dict)
-
-    def __getattr__(self, name):
-        metrics = self.__dict__.get("metrics", {})
-        if name in metrics:
-            return metrics[name]
-        raise AttributeError(f"{type(self).__name__} has no attribute {name!r}")
-
-    def check(self, name: str) -> Check:
-        """The check of metric ``name``."""
-        return next(c for c in self.checks if c.name == name)
-
-    @property
-    def failed(self) -> list[str]:
-        """Messages for the checks that failed (empty if it passed)."""
-        return [f"{self.scene}: |{c.name}| = {abs(c.value):.3g} > {c.tolerance:.3g}"
-                for c in self.checks if c.status == "fail"]
 
     def to_dict(self) -> dict:
         """grade.json: the metrics at the top level, passed, checks, reference, fem, path."""

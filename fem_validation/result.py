@@ -105,6 +105,15 @@ def _array(value, name: str, source: str, shape: tuple, dtype=np.float64,
     return a
 
 
+def surface_points(points, source: str) -> np.ndarray:
+    """The (n, 3) contact-surface nodes of a result, n >= 3, validated and read-only."""
+    pts = _array(points, "points", source, (None, 3))
+    if len(pts) < 3:
+        raise ResultError(f"{_where(source)}field 'points' must hold 3 or more contact-surface "
+                          f"nodes, got {len(pts)}")
+    return pts
+
+
 def _number(value, name: str, source: str, positive: bool = False) -> float:
     try:
         x = float(value)
@@ -310,11 +319,8 @@ class ContactResult:
     def __post_init__(self):
         s = self.source
         w = _where(s)
-        pts = _array(self.points, "points", s, (None, 3))
+        pts = surface_points(self.points, s)
         n = len(pts)
-        if n < 3:
-            raise ResultError(f"{w}field 'points' must hold 3 or more contact-surface nodes, "
-                              f"got {n}")
         object.__setattr__(self, "points", pts)
         object.__setattr__(self, "force", _number(self.force, "force", s, positive=True))
         if self.pressure is None and self.normal_force is None:

@@ -62,7 +62,15 @@ from typing import Any
 
 import numpy as np
 
-from .result import MULTIPLICITY, ContactFrame, ResultError, _array, _number, _where
+from .result import (
+    MULTIPLICITY,
+    ContactFrame,
+    ResultError,
+    _array,
+    _number,
+    _where,
+    surface_points,
+)
 
 #: A symmetric model's load must lie along a frame axis to this [rad].
 AXIS_TOLERANCE = 1e-9
@@ -141,11 +149,8 @@ class TangentialResult:
     def __post_init__(self):
         s = self.source
         w = _where(s)
-        pts = _array(self.points, "points", s, (None, 3))
+        pts = surface_points(self.points, s)
         n = len(pts)
-        if n < 3:
-            raise ResultError(f"{w}field 'points' must hold 3 or more contact-surface nodes, "
-                              f"got {n}")
         object.__setattr__(self, "points", pts)
         p = _array(self.pressure, "pressure", s, (n,))
         if not (p > 0).any():
