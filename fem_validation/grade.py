@@ -707,17 +707,24 @@ def _tolerances(tolerances: Mapping[str, float] | None, defaults=None,
     return tol
 
 
+def check_symmetry_sides(symmetry: str, xy: np.ndarray, where: str) -> None:
+    """Refuse a quarter or half model whose surface nodes (contact frame, (n, 2) [m]) lie
+    on both sides of a symmetry plane."""
+    if symmetry == "whole":
+        return
+    scale = np.abs(xy).max()
+    neg_x, neg_y = xy[:, 0].min() < -1e-6 * scale, xy[:, 1].min() < -1e-6 * scale
+    if (symmetry == "quarter" and (neg_x or neg_y)) or (neg_x and neg_y):
+        raise ResultError(f"{where}symmetry {symmetry!r}, but the contact surface "
+                          f"has nodes on both sides of a symmetry plane (x from "
+                          f"{xy[:, 0].min():.3g} m, y from {xy[:, 1].min():.3g} m in the "
+                          f"contact frame): give --symmetry whole, or the frame")
+
+
 def _sanity(result: ContactResult, c, xy, force_nodes, area, where: str) -> None:
     """Refuse results that cannot be graded against this scene (bad input, not a fail)."""
     mult = result.multiplicity
-    if result.symmetry != "whole":
-        scale = np.abs(xy).max()
-        neg_x, neg_y = xy[:, 0].min() < -1e-6 * scale, xy[:, 1].min() < -1e-6 * scale
-        if (result.symmetry == "quarter" and (neg_x or neg_y)) or (neg_x and neg_y):
-            raise ResultError(f"{where}symmetry {result.symmetry!r}, but the contact surface "
-                              f"has nodes on both sides of a symmetry plane (x from "
-                              f"{xy[:, 0].min():.3g} m, y from {xy[:, 1].min():.3g} m in the "
-                              f"contact frame): give --symmetry whole, or the frame")
+    check_symmetry_sides(result.symmetry, xy, where)
     if result.pressure is not None and result.normal_force is None:
         integral = mult * float(result.pressure @ area)
         ratio = integral / result.force

@@ -75,6 +75,7 @@ from .grade import (
     _mirror_axes,
     _tolerances,
     _worst,
+    check_symmetry_sides,
     fit_ellipse,
     lumped_area,
     nan_to_none,
@@ -298,14 +299,7 @@ def _face_triangles(result: TangentialResult, xy: np.ndarray) -> np.ndarray:
 def _sanity(result: TangentialResult, c, xy, area, where: str) -> None:
     """Refuse results that cannot be graded against this scene (bad input, not a fail)."""
     mult = result.multiplicity
-    if result.symmetry != "whole":
-        scale = np.abs(xy).max()
-        neg_x, neg_y = xy[:, 0].min() < -1e-6 * scale, xy[:, 1].min() < -1e-6 * scale
-        if (result.symmetry == "quarter" and (neg_x or neg_y)) or (neg_x and neg_y):
-            raise ResultError(f"{where}symmetry {result.symmetry!r}, but the contact surface "
-                              f"has nodes on both sides of a symmetry plane (x from "
-                              f"{xy[:, 0].min():.3g} m, y from {xy[:, 1].min():.3g} m in the "
-                              f"contact frame): give --symmetry whole, or the frame")
+    check_symmetry_sides(result.symmetry, xy, where)
     integral = mult * float(result.pressure @ area)
     ratio = integral / result.normal_force
     if not 1 / 1.8 < ratio < 1.8:

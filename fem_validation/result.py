@@ -114,6 +114,27 @@ def surface_points(points, source: str) -> np.ndarray:
     return pts
 
 
+def _check_symmetry(symmetry, source: str) -> None:
+    if symmetry not in MULTIPLICITY:
+        raise ResultError(f"{_where(source)}field 'symmetry' must be one of "
+                          f"{', '.join(MULTIPLICITY)}, got {symmetry!r}")
+
+
+def _check_frame_and_triangles(result, n: int) -> None:
+    """Validate a result's ``frame`` and ``triangles`` (indices into its n points); the
+    triangles are stored as a read-only int64 array."""
+    w = _where(result.source)
+    if not isinstance(result.frame, ContactFrame):
+        raise ResultError(f"{w}field 'frame' must be a ContactFrame, "
+                          f"got {type(result.frame).__name__}")
+    if result.triangles is not None:
+        tri = _array(result.triangles, "triangles", result.source, (None, 3), dtype=np.int64)
+        if tri.size and (tri.min() < 0 or tri.max() >= n):
+            raise ResultError(f"{w}field 'triangles' must index the {n} points, got "
+                              f"values {tri.min()}..{tri.max()}")
+        object.__setattr__(result, "triangles", tri)
+
+
 def _number(value, name: str, source: str, positive: bool = False) -> float:
     try:
         x = float(value)
@@ -335,18 +356,8 @@ class ContactResult:
                 raise ResultError(f"{w}field {name!r}: the contact is empty (no node carries "
                                   f"a positive value; largest {a.max():.6g})")
             object.__setattr__(self, name, a)
-        if self.symmetry not in MULTIPLICITY:
-            raise ResultError(f"{w}field 'symmetry' must be one of {', '.join(MULTIPLICITY)}, "
-                              f"got {self.symmetry!r}")
-        if not isinstance(self.frame, ContactFrame):
-            raise ResultError(f"{w}field 'frame' must be a ContactFrame, "
-                              f"got {type(self.frame).__name__}")
-        if self.triangles is not None:
-            tri = _array(self.triangles, "triangles", s, (None, 3), dtype=np.int64)
-            if tri.size and (tri.min() < 0 or tri.max() >= n):
-                raise ResultError(f"{w}field 'triangles' must index the {n} points, got "
-                                  f"values {tri.min()}..{tri.max()}")
-            object.__setattr__(self, "triangles", tri)
+        _check_symmetry(self.symmetry, s)
+        _check_frame_and_triangles(self, n)
         if self.active is not None:
             object.__setattr__(self, "active", _array(self.active, "active", s, (n,),
                                                       dtype=bool))

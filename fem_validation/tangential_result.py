@@ -67,6 +67,8 @@ from .result import (
     ContactFrame,
     ResultError,
     _array,
+    _check_frame_and_triangles,
+    _check_symmetry,
     _number,
     _where,
     surface_points,
@@ -197,22 +199,12 @@ class TangentialResult:
                                   f"path of {k} points, got {snap}")
         object.__setattr__(self, "snapshot", snap)
 
-        if self.symmetry not in MULTIPLICITY:
-            raise ResultError(f"{w}field 'symmetry' must be one of {', '.join(MULTIPLICITY)}, "
-                              f"got {self.symmetry!r}")
+        _check_symmetry(self.symmetry, s)
         if self.symmetry != "whole" and abs(math.sin(2 * self.direction)) > AXIS_TOLERANCE:
             raise ResultError(f"{w}field 'direction': a {self.symmetry} model must be loaded "
                               f"along a frame axis (0, pi/2, pi, ... rad: its symmetry planes), "
                               f"got {self.direction!r} rad")
-        if not isinstance(self.frame, ContactFrame):
-            raise ResultError(f"{w}field 'frame' must be a ContactFrame, "
-                              f"got {type(self.frame).__name__}")
-        if self.triangles is not None:
-            tri = _array(self.triangles, "triangles", s, (None, 3), dtype=np.int64)
-            if tri.size and (tri.min() < 0 or tri.max() >= n):
-                raise ResultError(f"{w}field 'triangles' must index the {n} points, got "
-                                  f"values {tri.min()}..{tri.max()}")
-            object.__setattr__(self, "triangles", tri)
+        _check_frame_and_triangles(self, n)
         if self.stick is not None:
             object.__setattr__(self, "stick", _array(self.stick, "stick", s, (n,), dtype=bool))
         object.__setattr__(self, "details", dict(self.details))
