@@ -55,6 +55,7 @@ from .solve import (
     cg_solve,
     solve_contact,
 )
+from .tangential_result import TangentialResult, path_reversals
 
 log = logging.getLogger("fem_validation")
 
@@ -384,9 +385,8 @@ def solve_friction(scene: Scene, mesh: BlockMesh, mu: float, axis: str = "x",
     if path.ndim != 1 or len(path) < 1 or not np.all(np.isfinite(path)):
         raise ValueError(f"path must be a non-empty 1-D array of finite displacements, "
                          f"got {path!r}"[:200])
-    steps_sign = np.sign(np.diff(np.concatenate([[0.0], path])))
-    reversals = np.flatnonzero(steps_sign[1:] * steps_sign[:-1] < 0)
-    snapshot = int(reversals[0]) + 1 if len(reversals) else len(path)
+    reversals = path_reversals(np.concatenate([[0.0], path]))
+    snapshot = reversals[0] if reversals else len(path)
 
     system = _TangentialSystem(scene, mesh, axis)
     seconds["assembly"] = time.perf_counter() - t0 - seconds["normal"]
@@ -491,8 +491,6 @@ def friction_result(scene: Scene, mesh: BlockMesh, sol: FrictionSolution):
     """The run as a :class:`~fem_validation.tangential_result.TangentialResult` (what the
     grader sees): body 1's contact nodes, the pressure and the shear at the snapshot,
     the path's displacement (with what the clamped blocks miss) and force."""
-    from .tangential_result import TangentialResult
-
     return TangentialResult(
         points=mesh.bodies[0].p[:, mesh.pairs[:, 0]].T,
         pressure=sol.normal_force / mesh.pair_area, shear=sol.snapshot_shear,
