@@ -149,7 +149,12 @@ class LoadPath:
         Semi-axes [m] of the stick ellipse: the largest ellipse similar to the contact
         ellipse inside which nothing slipped during the step to this point.  (a, b)
         when nothing slipped (for example P raised at fixed Q), 0 when the whole
-        contact slides or P = 0.
+        contact slides or P = 0.  At a switch-over, where a ring that slipped before
+        meets its limit again along its whole length (Q raised by exactly mu (P1 - P0)
+        after P was raised from P0 to P1), the ring has not slipped yet: the stick
+        ellipse is the larger one, as in Mindlin and Deresiewicz's closed form at that
+        point; just beyond, it jumps to the virgin stick zone.  A force within 64 eps of
+        the switch-over's is taken to be at it, so every build decides it alike.
     sliding : ndarray of bool
         Whether |Q| = mu P: the whole contact slides.
     mu : float
@@ -202,12 +207,14 @@ class _SpringBed:
         return edges, A, B, wa, wb
 
     @staticmethod
-    def _split(edges, ta, tb, a2, wb, delta):
+    def _split(edges, ta, tb, a2, wb, delta, pinned=None):
         """Sub-intervals of each piece where the trial u = ta + tb x^2 is above the limit
         a2 - x^2 (regime +1), below its negative (-1) or between (0): x (n, 4) and the
         regime of the 3 sub-intervals (n, 3).  The entering piece (wb != 0) slides as a
         whole or not at all: its trial is delta / (a1^2 - a0^2) = -delta wb times the
-        limit, decided here by that ratio rather than by rounding at its ends."""
+        limit, decided here by that ratio rather than by rounding at its ends.  A
+        ``pinned`` piece is parallel to a limit and ends the step exactly on it (see
+        :meth:`_switch_over`): regime 0, it has not slipped."""
         lo, hi = edges[:-1], edges[1:]
         with np.errstate(divide="ignore", invalid="ignore"):
             s_up = (a2 - ta) / (tb + 1.0)  # ta + tb s = a2 - s
@@ -226,6 +233,8 @@ class _SpringBed:
         if entering.any():
             ratio = -delta * wb[entering]
             regime[entering] = np.where(ratio > 1.0, 1, np.where(ratio < -1.0, -1, 0))[:, None]
+        if pinned is not None:
+            regime[pinned] = 0
         return x, regime
 
     @staticmethod
@@ -285,8 +294,51 @@ class _SpringBed:
                 delta = lo
             else:
                 delta = self._solve(prepared, alpha1, target, lo, hi)
+                delta, pinned = self._switch_over(prepared, alpha1, target, delta, lo, hi)
+                self._commit(prepared, alpha1, delta, pinned)
+                return delta, self._front
         self._commit(prepared, alpha1, delta)
         return delta, self._front
+
+    def _switch_over(self, prepared, alpha1, target, delta, lo, hi):
+        """Snap a step that ends at a switch-over to the switch-over itself.
+
+        A piece parallel to a limit (one that slid before: u = A -+ x^2, or the entering
+        piece, whose trial is proportional to the limit) meets that limit along its whole
+        length at one increment d_c.  Ending below d_c the piece sticks, above it the whole
+        piece slips, so the stick zone jumps there (the Mindlin-Deresiewicz switch-over
+        from "the virgin curve of P1 added" to "the virgin state of (P1, Q)" at dQ = mu
+        (P1 - P0)).  Which side a force within rounding of the switch-over's falls on
+        would be decided by the last bit of the computed state, which differs between
+        builds (numpy's AVX-512 and AVX2 code).  So a target whose force is within
+        ``64 eps`` of the largest force alpha1^3 of the force at d_c ends the step at d_c
+        exactly, the piece on its limit and not slipped (the stick zone is the larger,
+        left-continuous one, as the closed forms give at dQ = mu (P1 - P0)).  Returns
+        the increment and the pinned pieces (None if none)."""
+        edges, A, B, wa, wb = prepared
+        a2 = alpha1 * alpha1
+        old = wb == 0.0
+        candidates = []
+        for sign in (1.0, -1.0):
+            parallel = old & (B == -sign)  # u = A - sign x^2, parallel to sign (a2 - x^2)
+            candidates += [(sign * a2 - A[j], j) for j in np.flatnonzero(parallel)]
+        if not old.all():
+            d = (alpha1 - self.alpha) * (alpha1 + self.alpha)
+            j = int(np.flatnonzero(~old)[0])
+            candidates += [(d, j), (-d, j)]
+        tol = 64.0 * np.finfo(float).eps * alpha1 * a2
+        pinned = None
+        for dc, _ in candidates:
+            if lo <= dc <= hi and abs(self._force(prepared, alpha1, dc)[0] - target) <= tol:
+                delta = dc
+                break
+        else:
+            return delta, None
+        pinned = np.zeros(A.size, dtype=bool)
+        for dc, j in candidates:
+            if dc == delta:
+                pinned[j] = True
+        return delta, pinned
 
     def move(self, alpha1, delta):
         """Move to contact size alpha1 with the displacement increment ``delta`` (scaled);
@@ -326,11 +378,15 @@ class _SpringBed:
             x = step
         return best
 
-    def _commit(self, prepared, alpha1, delta):
+    def _commit(self, prepared, alpha1, delta, pinned=None):
         edges, A, B, wa, wb = prepared
         a2 = alpha1 * alpha1
         ta, tb = A + delta * wa, B + delta * wb
-        x, regime = self._split(edges, ta, tb, a2, wb, delta)
+        if pinned is not None:  # exactly on the limit (+-(a2 - x^2)), not rounded next to it
+            on = np.where(tb[pinned] < 0.0, 1.0, -1.0)
+            ta, tb = ta.copy(), tb.copy()
+            ta[pinned], tb[pinned] = on * a2, -on
+        x, regime = self._split(edges, ta, tb, a2, wb, delta, pinned)
         c0 = np.where(regime == 0, ta[:, None], regime * a2).reshape(-1)
         c2 = np.where(regime == 0, tb[:, None], -regime * 1.0).reshape(-1)
         left, right = x[:, :-1].reshape(-1), x[:, 1:].reshape(-1)

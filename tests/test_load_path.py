@@ -445,3 +445,52 @@ def test_spring_separation_and_bad_input():
         hertz.LoadPathSpring(body1, body2, MU, direction=1.0)
     with pytest.raises(ValueError, match="mu"):
         hertz.LoadPathSpring(body1, body2, -MU)
+
+
+# ------------------------------------------------------------ the switch-over, bit-robust
+_SWITCH_SCRIPT = """
+import json, sys, numpy as np, hertz
+b1 = hertz.Body(5e-3, 5e-3, E=210e9, nu=0.3)
+b2 = hertz.Body.plane(E=70e9, nu=0.22)
+out = []
+for dq in (np.nextafter(4.5, 0.0), 4.5, np.nextafter(4.5, 9.0), 4.5 - 1e-6, 4.5 + 1e-6):
+    p = hertz.load_path(b1, b2, [20.0, 20.0, 32.0, 32.0], [0.0, 4.0, 4.0, 4.0 + dq], 0.375)
+    out.append([float(p.stick_a[3]), float(p.a[1]), float(p.displacement[3])])
+json.dump(out, sys.stdout)
+"""
+
+
+@pytest.mark.parametrize("cpu", ["native", "no-avx512"])
+def test_switch_over_is_decided_the_same_on_every_build(cpu):
+    """dQ = mu (P1 - P0) exactly (4.5 N): the slipped annulus of the first loading meets
+    its new limit along its whole length, so the stick zone jumps from a(P0) (nothing has
+    slipped yet: the closed form's value at the point) to the virgin stick zone of (P1,
+    Q0 + dQ) just beyond.  At the point and one ulp of dQ either side the result is the
+    switch-over's own, a(P0), with numpy's AVX-512 code on and off (once decided by the
+    last bit of the state: 8.56e-5 on AVX-512, 1.10e-4 without); 1e-6 N either side, the
+    two closed forms."""
+    import json
+    import os
+    import subprocess
+    import sys
+
+    env = dict(os.environ)
+    if cpu == "no-avx512":
+        env["NPY_DISABLE_CPU_FEATURES"] = "X86_V4 AVX512_ICL AVX512_SPR AVX512_SKX AVX512F"
+    run = subprocess.run([sys.executable, "-c", _SWITCH_SCRIPT], capture_output=True,
+                         text=True, env=env, check=False)
+    assert run.returncode == 0, run.stderr
+    rows = json.loads(run.stdout)
+    radii, m1, m2 = SCENES[0]
+    _, _, r1, r2 = _bodies(radii, m1, m2)
+    sc = ref.Scene(r1, r2, MU, "x")
+    a0 = sc.contact(20.0)[0]
+    for stick, a_p0, _ in rows[:3]:
+        assert _rel(stick, a0) < TOL_STICK
+        assert stick == a_p0
+    for (stick, _, d), dq in zip(rows[3:], (4.5 - 1e-6, 4.5 + 1e-6), strict=True):
+        d_ref, s_ref = sc.normal_up_then_tangential(20.0, 4.0, 32.0, dq)
+        assert _rel(stick, s_ref) < TOL_STICK
+        assert _rel(d, d_ref) < TOL_DISPLACEMENT
+    # the displacement is continuous through the switch-over
+    assert max(r[2] for r in rows[:3]) - min(r[2] for r in rows[:3]) < 4 * TOL_DISPLACEMENT * rows[1][2]
