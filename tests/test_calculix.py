@@ -25,7 +25,11 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from fem_validation.readers.frd import FrdFormatError, read_frd
+from fem_extra import require
+
+require("skfem", "meshio", "matplotlib")
+
+from fem_validation.readers.frd import FrdFormatError, read_frd  # noqa: E402
 
 DATA = Path(__file__).parent / "data" / "calculix"
 CCX = shutil.which("ccx")

@@ -25,6 +25,10 @@ import pytest
 
 pytest.importorskip("scipy")
 
+from fem_extra import require  # noqa: E402
+
+require("skfem", "meshio", "matplotlib")
+
 import fem_validation.grade_tangential as gt  # noqa: E402
 import hertz  # noqa: E402
 from fem_validation import grade_cli  # noqa: E402
