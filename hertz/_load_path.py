@@ -327,9 +327,12 @@ class _SpringBed:
             j = int(np.flatnonzero(~old)[0])
             candidates += [(d, j), (-d, j)]
         tol = 64.0 * np.finfo(float).eps * alpha1 * a2
-        pinned = None
-        for dc, _ in candidates:
-            if lo <= dc <= hi and abs(self._force(prepared, alpha1, dc)[0] - target) <= tol:
+        # the force is nondecreasing in the increment: only the nearest switch-over on
+        # either side of the root can be within tol of the target
+        below = [dc for dc, _ in candidates if lo <= dc <= delta]
+        above = [dc for dc, _ in candidates if delta < dc <= hi]
+        for dc in ([max(below)] if below else []) + ([min(above)] if above else []):
+            if abs(self._force(prepared, alpha1, dc)[0] - target) <= tol:
                 delta = dc
                 break
         else:
