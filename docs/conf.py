@@ -49,6 +49,7 @@ extensions = [
     "sphinx.ext.autosummary",
     "sphinx.ext.intersphinx",
     "sphinx.ext.mathjax",
+    "sphinx.ext.viewcode",  # [source] links from the API reference to the code
 ]
 
 source_suffix = {".rst": "restructuredtext", ".md": "myst-nb"}  # rst first: autosummary writes .rst

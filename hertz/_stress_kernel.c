@@ -498,7 +498,7 @@ int hertz_point_stress(double a, double b, double nu, double x, double y, double
 
 /* The principal stresses on the z axis (normalised: a = 1, b = k) and their first and
    second derivatives in z: s[i][0..2] for i = x, y, z. With s = z^2, A = 1 + s,
-   B = k^2 + s (Johnson sec. 3.5; REFERENCES):
+   B = k^2 + s (Johnson sec. 3.5; Thomas & Hoersch 1930; docs/bibliography.md):
      szz = -k / sqrt(AB)
      sxx = k [(1-nu) z I_A - nu z I_w - (1-2nu) / (sqrt A (sqrt A + sqrt B))]
      syy = k [(1-nu) z I_B - nu z I_w - (1-2nu) / (sqrt B (sqrt A + sqrt B))]

@@ -609,7 +609,8 @@ SZZ_AVERAGE = (0.0088, 0.0135)
 
 @pytest.mark.slow
 def test_axis_stress_at_the_default_level(default_level_alpha_1):
-    """sigma_zz on the axis against Hertz's closed form (REFERENCES.md), 0.2 a to 3 a deep,
+    """sigma_zz on the axis against Hertz's closed form (Johnson 1985 sec. 3.5, see
+    docs/bibliography.md), 0.2 a to 3 a deep,
     and the recovery against the nodal average on the same solution.
 
     Observed: sigma_zz within 0.74% of p0 in both bodies, against 0.88% and 1.35% for the

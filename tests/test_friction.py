@@ -254,7 +254,8 @@ def test_maxima_agree_with_mpmath():
 
 def test_maxima_without_friction_and_trailing_edge_tension():
     m = sliding_maxima(2e-3, 2e-3, 1e9, 0.0, 0.3)
-    # frictionless circle, nu = 0.3 (REFERENCES.md): 0.6200 p0 and 0.3100 p0 at 0.4809 a
+    # frictionless circle, nu = 0.3 (Johnson 1985 sec. 3.4, to four digits as in
+    # tests/test_stress.py): 0.6200 p0 and 0.3100 p0 at 0.4809 a
     assert abs(m.von_mises / 1e9 - 0.62004) < 1e-5 and abs(m.z_von_mises / 2e-3 - 0.48086) < 1e-5
     assert abs(m.tau_max / 1e9 - 0.31002) < 1e-5
     assert abs(m.tensile / 1e9 - 0.4 / 3) < 1e-14

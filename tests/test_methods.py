@@ -1,7 +1,7 @@
 """Each published method against the 50-digit table, at the accuracy it is known to reach.
 
-The tolerances are the published or previously measured figures (REFERENCES.md),
-with a small margin, in both directions where a method has a characteristic
+The tolerances are the published or previously measured figures (each method's docstring in
+hertz/methods.py; the papers in docs/bibliography.md), with a small margin, in both directions where a method has a characteristic
 error: a broken formula (wrong exponent, wrong coefficient) fails.
 """
 

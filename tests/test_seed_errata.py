@@ -1,4 +1,5 @@
-"""The seed as printed fails; corrected it works but loses digits where REFERENCES.md says."""
+"""The seed as printed fails; corrected it works but loses digits where the errata say
+(docs/explanation/solver.md)."""
 
 import mpmath as mp
 import numpy as np
@@ -42,7 +43,8 @@ def test_corrected_method_two_iterations_reaches_2e_10():
 
 @pytest.mark.parametrize("alpha, at_least", [(1 + 1e-7, 1e-9), (1e12, 1e-4)])
 def test_corrected_method_loses_digits_at_the_extremes(alpha, at_least):
-    """REFERENCES.md erratum 3: 5e-9 near alpha = 1 + 1e-7, 2.8e-4 at 1e12 (lambda error)."""
+    """Erratum 3 (docs/explanation/solver.md): 5e-9 near alpha = 1 + 1e-7, 2.8e-4 at 1e12
+    (lambda error)."""
     lam = ellipse_ref(alpha)[0]
     seed_err = float(abs(mp.mpf(float(methods.seed_hokada_2025(alpha, 2))) / lam - 1))
     ours_err = float(abs(mp.mpf(hertz.ellipticity(alpha)) / lam - 1))

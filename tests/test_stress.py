@@ -1,9 +1,10 @@
 """Contact.stress / subsurface / first_yield_load and the line contact's, through the API.
 
 References: published values (Johnson, Contact Mechanics; Harris), the closed forms on
-the z axis and of the orthogonal shear stress (REFERENCES.md, verified there against a
-quadrature of Boussinesq's solution) evaluated here with mpmath, and physical
-invariants (equilibrium, surface traction, symmetry, the line-contact limit).
+the z axis (the ellipsoidal potential of Thomas & Hoersch 1930 and Johnson 1985 sec. 3.5,
+written with Carlson's R_D) and of the orthogonal shear stress (Lundberg & Palmgren 1947)
+evaluated here with mpmath (the works: docs/bibliography.md), and physical invariants
+(equilibrium, surface traction, symmetry, the line-contact limit).
 """
 
 import json
@@ -83,7 +84,8 @@ def test_line_contact_shear_counts_the_out_of_plane_stress(nu):
 # ------------------------------------------------- closed forms on the z axis
 
 def axis_reference(a, b, nu, z):
-    """sigma_x, sigma_y, sigma_z / p0 on the z axis (REFERENCES.md), 40 digits."""
+    """sigma_x, sigma_y, sigma_z / p0 on the z axis (Johnson 1985 sec. 3.5 with Carlson's
+    R_D; docs/bibliography.md), 40 digits."""
     with mp.workdps(40):
         a, b, nu, z = (mp.mpf(v) for v in (a, b, nu, z))
         s = z * z
