@@ -70,6 +70,16 @@ BLOCK_OVER_R = 2.0
 GROOVE_TOP_OVER_RG = 0.5
 #: Nodes closer than this (units of R) to a plane lie on it.
 PLANE_TOL = 1e-9
+#: The range of a/R (Hertz's semi-major axis over the ball's radius) the curved meshes are
+#: built for.  Above MAX_A_OVER_R the contact leaves the hemisphere's quarter.  Below
+#: MIN_A_OVER_R the elements at the contact approach gmsh's geometric tolerance in units
+#: of R: measured at level 0, a/R = 1e-8 meshed in 1.3 s, 1e-10 not in 40 s (23 GB when
+#: left to run); the ball in a groove at a/R = 1e-5 (b/R = 1.2e-6) meshed at level 4 in
+#: 65 s, 170k vertices.  The number of vertices grows only with log(R/b) (the sizes grow
+#: linearly away from the contact), so within the range every level stays below 0.2
+#: million vertices per body.
+MIN_A_OVER_R = 1e-5
+MAX_A_OVER_R = 0.5
 
 
 def level_scale(level: int) -> float:
@@ -92,7 +102,8 @@ class CurvedScene:
     groove_radius : float or None
         Groove radius R_g [m] (groove axis along x); None for a flat block.
     a_over_r : float
-        Target Hertz semi-major axis over R; sets the load.
+        Target Hertz semi-major axis over R; sets the load; in
+        [MIN_A_OVER_R, MAX_A_OVER_R] = [1e-5, 0.5].
     material : dict
         E [Pa] and nu of both bodies.
     """
@@ -104,9 +115,10 @@ class CurvedScene:
     material: dict = field(default_factory=lambda: dict(STEEL))
 
     def __post_init__(self):
-        if not 0 < self.a_over_r <= 0.5:
-            raise ValueError(f"a_over_r must be in (0, 0.5] (the contact on a hemisphere), "
-                             f"got {self.a_over_r!r}")
+        if not MIN_A_OVER_R <= self.a_over_r <= MAX_A_OVER_R:
+            raise ValueError(f"a_over_r must be in [{MIN_A_OVER_R:g}, {MAX_A_OVER_R:g}] (a "
+                             f"contact on the hemisphere, of elements well above gmsh's "
+                             f"tolerance), got {self.a_over_r!r}")
 
     @property
     def body1(self) -> hertz.Body:

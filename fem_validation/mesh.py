@@ -67,6 +67,16 @@ H0_DEPTH = 1.3
 
 #: Grid spacing of the structured block per level, in units of b.
 LEVEL_H0 = {n: HS * f for n, f in LEVEL_SCALE.items()}
+#: The most mesh vertices (both blocks) :func:`build` lets gmsh make.  gmsh took about
+#: 1.4 kB of memory per vertex (a 47k-vertex mesh: 64 MB), the quadratic deck model as
+#: much again per mid-side node (about 7 per vertex): 2 million vertices are about 3 GB in
+#: gmsh and 15 GB for a deck.  The default validation scenes need at most about 1 million
+#: at level 5 (crossed-30deg, a whole model), alpha = 1000 (a/b = 68) 1.5 million at
+#: level 4; a needle-like contact (a/b in the hundreds and more) at a fine level needs more.
+MAX_MESH_NODES = 2_000_000
+#: Unstructured vertices per unit volume over h**-3 (h the target size): fitted to gmsh's
+#: HXT meshes of blocks.geo (see :func:`estimate_nodes`).
+UNSTRUCTURED_DENSITY = 1.1
 
 
 @dataclass
@@ -186,6 +196,70 @@ def mesh_parameters(scene: Scene, level: int = DEFAULT_LEVEL) -> dict[str, float
             "hmax": HMAX_OVER_EXTENT * extent * f}
 
 
+def _axis_cells(inner: float, outer: float, step: float) -> tuple[np.ndarray, np.ndarray]:
+    """Cell midpoints and widths on [0, outer]: uniform up to ``inner``, geometric beyond."""
+    inner = min(inner, outer)
+    edges = np.linspace(0.0, inner, 17)
+    if outer > inner:
+        edges = np.concatenate([edges, inner + np.geomspace(min(step, outer - inner) * 1e-2,
+                                                            outer - inner, 48)])
+    return 0.5 * (edges[1:] + edges[:-1]), np.diff(edges)
+
+
+def estimate_nodes(params: dict) -> float:
+    """The number of mesh vertices (both blocks) that :func:`build` would make.
+
+    The structured block holds one vertex per grid cell (spacing hs across the
+    major axis and in depth, st hs along it); elsewhere the target size h
+    of meshes/blocks.geo (h0 growing by ``grade`` per unit distance from the
+    zone, at most hmax) gives UNSTRUCTURED_DENSITY / h**3 vertices per unit
+    volume, integrated over the blocks (taken as squares in the ellipse's frame).
+    Within a factor of 1.5 of gmsh's count on the default scenes at levels 0-3
+    (measured); used to refuse a mesh before gmsh runs.
+
+    Parameters
+    ----------
+    params : dict
+        The parameters of :func:`mesh_parameters` (units of b).
+
+    Returns
+    -------
+    float
+        The estimated number of vertices [-].
+    """
+    ext, depth = params["L"], params["H"]
+    xi, yi = params["zone"] * params["ea"], params["zone"] * params["eb"]
+    hs, st, zi, zz = params["hs"], params["st"], params["zi"], params["zz"]
+    x, dx = _axis_cells(xi, ext, params["h0"])
+    y, dy = _axis_cells(yi, ext, params["h0"])
+    z, dz = _axis_cells(max(zi, zz), depth, params["h0"])
+    gx = np.maximum(x - xi, 0.0)[:, None, None]
+    gy = np.maximum(y - yi, 0.0)[None, :, None]
+    gz = np.maximum(z - zz, 0.0)[None, None, :]
+    h = np.minimum(params["hmax"], params["h0"] + params["grade"]
+                   * np.sqrt(gx * gx + gy * gy + gz * gz))
+    density = UNSTRUCTURED_DENSITY / h ** 3
+    grid = ((x <= xi)[:, None, None] & (y <= yi)[None, :, None] & (z <= zi)[None, None, :])
+    density = np.where(grid, 1.0 / (hs * hs * st * hs), density)
+    octant = float(np.einsum("ijk,i,j,k->", density, dx, dy, dz))
+    # the octant x, y, z >= 0 of the ellipse's frame: 2 (quarter: z < 0 too) or 8 of them
+    return octant * (2.0 if params["quarter"] else 8.0)
+
+
+def check_mesh_size(params: dict, what: str) -> float:
+    """The estimate of :func:`estimate_nodes`, or ValueError above :data:`MAX_MESH_NODES`.
+
+    ``what`` names the scene and level in the message.
+    """
+    nodes = estimate_nodes(params)
+    if not nodes <= MAX_MESH_NODES:
+        raise ValueError(f"{what}: the blocks' mesh would have about {nodes:.3g} vertices, more "
+                         f"than the {MAX_MESH_NODES:.3g} allowed (memory: about 1.4 kB each in "
+                         f"gmsh): lower the level, or make the contact less elongated (a/b = "
+                         f"{params['ea'] / params['eb']:.3g})")
+    return nodes
+
+
 def _physical(gmsh, dim: int, name: str) -> int:
     for d, tag in gmsh.model.getPhysicalGroups(dim):
         if gmsh.model.getPhysicalName(d, tag) == name:
@@ -269,12 +343,16 @@ def build(scene: Scene, level: int = DEFAULT_LEVEL, parameters: dict | None = No
 
     Raises
     ------
+    ValueError
+        If the mesh would have more than :data:`MAX_MESH_NODES` vertices
+        (:func:`estimate_nodes`, before gmsh runs).
     FEMValidationError
         If gmsh fails or the geometry lacks a physical group the solver needs.
     """
     import gmsh
 
     params = {**mesh_parameters(scene, level), **(parameters or {})}
+    check_mesh_size(params, f"scene {scene.name!r} at level {level}")
     b = scene.hertz().b
     t0 = time.perf_counter()
     gmsh.initialize(interruptible=False)

@@ -118,6 +118,32 @@ def friction_path(model: DeckModel, mu: float, ratio: float = 0.8,
                         stick_slope_factor * model.penalty)
 
 
+#: The longest scene name written into a deck's comments and title [characters].
+MAX_NAME_CHARS = 80
+
+
+def one_line(text, limit: int | None = MAX_NAME_CHARS) -> str:
+    """``text`` made safe for a comment or title line of a deck.
+
+    Every character outside printable ASCII (a line break, a tab, a control
+    character, anything else: .inp files are ASCII) becomes "?", leading
+    blanks and "*" go (a line starting with "*" is a keyword), and the result is
+    cut to ``limit`` characters.  A scene name holding a line break and
+    ``*INCLUDE, INPUT=...`` thus stays inside its comment.
+
+    Examples
+    --------
+    >>> one_line("ball\\n*INCLUDE, INPUT=/etc/passwd")
+    'ball?*INCLUDE, INPUT=/etc/passwd'
+    >>> one_line("*STEP")
+    'STEP'
+    """
+    out = "".join(ch if " " <= ch <= "~" else "?" for ch in str(text)).lstrip(" *")
+    if limit is not None and len(out) > limit:
+        out = out[:limit - 3] + "..."
+    return out or "?"
+
+
 def _lines(ids, per_line: int = 16) -> str:
     ids = list(ids)
     return "\n".join(", ".join(str(i) for i in ids[k:k + per_line])
@@ -135,7 +161,7 @@ def deck_header(model: DeckModel, units: str, dialect: str, command: str | None)
     ul, us = u["length"], u["stress"]
     c = model.contact
     s = model.scene
-    out = [f"** hertz benchmark deck ({dialect}): {s.name}",
+    out = [f"** hertz benchmark deck ({dialect}): {one_line(s.name)}",
            f"** units: {lu}, {fu}, {su}; geometry: {model.geometry}, "
            f"{model.symmetry} model, mesh level {model.level}",
            f"** body 1: Rx = {s.body1.Rx * ul:g}, Ry = {s.body1.Ry * ul:g} {lu}, "
@@ -155,7 +181,7 @@ def deck_header(model: DeckModel, units: str, dialect: str, command: str | None)
            + (f" times {model.multiplicity} ({model.symmetry} model)"
               if model.multiplicity > 1 else "")]
     if command:
-        out.append(f"** written by: {command}")
+        out.append(f"** written by: {one_line(command, None)}")
     return out
 
 
@@ -172,7 +198,8 @@ def write_inp(model: DeckModel, path, units: str = "mm", dialect: str = "calculi
         mm, N, MPa or m, N, Pa.
     dialect : {"calculix", "abaqus"}
     command : str, optional
-        The command line, recorded in a comment.
+        The command line, recorded in a comment (made one line of printable
+        ASCII by :func:`one_line`, as the scene's name is).
     friction : FrictionPath, optional
         Coulomb friction (``*FRICTION``) and the tangential steps after the
         normal one (CalculiX only).
@@ -186,7 +213,7 @@ def write_inp(model: DeckModel, path, units: str = "mm", dialect: str = "calculi
         raise ValueError(f"dialect must be 'calculix' or 'abaqus', got {dialect!r}")
     ul, us = UNITS[units]["length"], UNITS[units]["stress"]
     out = deck_header(model, units, dialect, command)
-    out += ["*HEADING", f"hertz benchmark {model.scene.name}",
+    out += ["*HEADING", f"hertz benchmark {one_line(model.scene.name)}",
             "*NODE, NSET=NALL"]
     xyz = model.nodes * ul
     out += [f"{i + 1}, {_g(x)}, {_g(y)}, {_g(z)}" for i, (x, y, z) in enumerate(xyz)]
@@ -231,7 +258,7 @@ def write_inp(model: DeckModel, path, units: str = "mm", dialect: str = "calculi
                 "*OUTPUT, FIELD", "*NODE OUTPUT", "U, RF", "*ELEMENT OUTPUT",
                 "S", "*CONTACT OUTPUT", "CSTRESS, CDISP",
                 "*NODE PRINT, NSET=MOVED, TOTALS=YES", "RF", "*END STEP"]
-    with open(path, "w") as f:
+    with open(path, "w", encoding="ascii") as f:
         f.write("\n".join(out) + "\n")
 
 

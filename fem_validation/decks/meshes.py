@@ -32,6 +32,7 @@ from pathlib import Path
 
 import numpy as np
 
+from ..errors import FEMValidationError
 from .inp import UNITS
 from .model import TET_FACES, DeckModel, face_nodes
 
@@ -243,7 +244,20 @@ def problem(model: DeckModel, units: str = "mm", files: dict | None = None,
 
 def write_problem(model: DeckModel, out: Path, units: str = "mm", files: dict | None = None,
                   command: str | None = None, friction=None) -> Path:
+    """Write DIR/problem.json (:func:`problem`), strict JSON; returns the path.
+
+    Raises
+    ------
+    FEMValidationError
+        A number is not finite (JSON has no Infinity or NaN): the model's checks let
+        it through, a defect.
+    """
     path = Path(out) / "problem.json"
-    path.write_text(json.dumps(problem(model, units, files, command, friction), indent=1)
-                    + "\n")
+    try:
+        text = json.dumps(problem(model, units, files, command, friction), indent=1,
+                          allow_nan=False)
+    except ValueError:
+        raise FEMValidationError(f"{path}: a value is not a finite number, which JSON cannot "
+                                 f"hold (a defect of fem_validation: please report)") from None
+    path.write_text(text + "\n")
     return path

@@ -208,15 +208,85 @@ def paraboloid_height(body: hertz.Body, x: np.ndarray, y: np.ndarray) -> np.ndar
     return h
 
 
+def _min_a_over_r() -> float:
+    from ..curved_mesh import MIN_A_OVER_R
+
+    return MIN_A_OVER_R
+
+
+def smallest_radius(scene: Scene) -> float:
+    """The smallest finite principal radius of the two bodies, in absolute value [m]."""
+    return min(abs(r) for body in (scene.body1, scene.body2) for r in (body.Rx, body.Ry)
+               if math.isfinite(r))
+
+
+def check_scene(scene: Scene) -> hertz.Contact:
+    """Hertz's contact at the scene's target load, if a deck model can be meshed for it.
+
+    A deck needs a target load that is a finite number > 0 [N], and a contact
+    whose semi-major axis a lies between MIN_A_OVER_R = 1e-5 times the
+    smallest radius R_min of the bodies and the largest its model takes: 0.5 R
+    for a true ball on a plane or in a groove, 0.0375 R_min for
+    paraboloid-faced blocks (MAX_RISE / MIN_EXTENT_OVER_A, see
+    :func:`block_extent`).  Below 1e-5 the curved meshes' elements approach
+    gmsh's geometric tolerance (gmsh then meshes until it runs out of memory);
+    the blocks, built in units of b, would mesh any contact, but a contact of
+    less than 1e-5 of the radii is far more likely a load or a modulus in the
+    wrong unit (load = 1e-300 N, E = 1e300 Pa), and is refused as well.  This
+    runs before gmsh.
+
+    Parameters
+    ----------
+    scene : Scene
+
+    Returns
+    -------
+    hertz.Contact
+        Hertz at the target load.
+
+    Raises
+    ------
+    ValueError
+        Naming the scene, the load or the ratio a/R_min, and the range allowed.
+    """
+    load = scene.load
+    if isinstance(load, bool) or not isinstance(load, int | float) or not (
+            math.isfinite(load) and load > 0):
+        raise ValueError(f"scene {scene.name!r}: load must be a finite number > 0 [N] (a deck "
+                         f"prescribes the approach that reaches it), got {load!r}")
+    c = scene.hertz()
+    r_min = smallest_radius(scene)
+    low = _min_a_over_r()
+    if not c.a >= low * r_min:
+        raise ValueError(f"scene {scene.name!r}: the contact is too small for the meshes: "
+                         f"Hertz's a = {c.a:.3g} m is {c.a / r_min:.3g} times the smallest "
+                         f"radius {r_min:.3g} m; a deck needs a/R_min >= {low:g} (and at most "
+                         f"0.5 for a ball on a plane or in a groove, "
+                         f"{MAX_RISE / MIN_EXTENT_OVER_A:g} otherwise): check the load and "
+                         f"the moduli (SI units: N, Pa)")
+    return c
+
+
+def _check_options(slave_body, penalty_factor) -> None:
+    """The options of a model, checked before anything is meshed."""
+    if slave_body not in (1, 2) or isinstance(slave_body, bool):
+        raise ValueError(f"slave_body must be 1 or 2, got {slave_body!r}")
+    if isinstance(penalty_factor, bool) or not isinstance(penalty_factor, int | float) or not (
+            math.isfinite(penalty_factor) and penalty_factor > 0):
+        raise ValueError(f"penalty_factor must be a finite number > 0 (the penalty slope over "
+                         f"E*/h0), got {penalty_factor!r}")
+
+
 # --------------------------------------------------------------------------- curved
 def curved_scene_for(scene: Scene):
     """The :class:`CurvedScene` of a ball on a plane or in a groove along x, or None.
 
     True geometry needs: body 1 a sphere (Rx = Ry > 0), body 2 flat or a groove
     (Rx infinite, Ry = -R_g with R_g > R), one material, and a semi-axis at the
-    target load of at most half the ball's radius.
+    target load between 1e-5 and 0.5 times the ball's radius
+    (:data:`fem_validation.curved_mesh.MIN_A_OVER_R`, ``MAX_A_OVER_R``).
     """
-    from ..curved_mesh import CurvedScene, ball_groove, sphere_plane
+    from ..curved_mesh import MAX_A_OVER_R, MIN_A_OVER_R, CurvedScene, ball_groove, sphere_plane
 
     b1, b2 = scene.body1, scene.body2
     if not (math.isfinite(b1.Rx) and b1.Rx == b1.Ry and b1.Rx > 0):
@@ -225,7 +295,7 @@ def curved_scene_for(scene: Scene):
         return None
     radius = b1.Rx
     a_over_r = scene.hertz().a / radius
-    if not 0 < a_over_r <= 0.5:
+    if not MIN_A_OVER_R <= a_over_r <= MAX_A_OVER_R:
         return None
     material = {"E": b1.E, "nu": b1.nu}
     if math.isinf(b2.Rx) and math.isinf(b2.Ry):
@@ -239,10 +309,19 @@ def curved_scene_for(scene: Scene):
 
 def build_curved_model(scene: Scene, level: int, slave_body: int = 1,
                        penalty_factor: float = PENALTY_FACTOR) -> DeckModel:
-    """Quarter model of a ball on a block (or in a groove) with quadratic tetrahedra."""
+    """Quarter model of a ball on a block (or in a groove) with quadratic tetrahedra.
+
+    Raises
+    ------
+    ValueError
+        Before meshing: the scene is not a ball on a plane or in a groove, or
+        :func:`check_scene` refuses it, or an option is out of range.
+    """
     from ..curved import imposed_approach
     from ..curved_mesh import build_curved
 
+    _check_options(slave_body, penalty_factor)
+    check_scene(scene)
     cscene = curved_scene_for(scene)
     if cscene is None:
         raise ValueError(f"scene {scene.name!r} is not a ball on a plane or in a groove")
@@ -302,25 +381,45 @@ def block_extent(scene: Scene) -> float:
 
     EXTENT_OVER_A semi-major axes, less where a paraboloid would rise more than
     MAX_RISE of the depth at the block's edge (the mapped elements stay sound).
+    The blocks need at least MIN_EXTENT_OVER_A semi-major axes, so the contact
+    must satisfy 1e-5 <= a / R_min <= MAX_RISE / MIN_EXTENT_OVER_A = 0.0375
+    (R_min the smallest radius; the lower end is :func:`check_scene`'s).
+
+    Raises
+    ------
+    ValueError
+        Naming the scene, a and R_min, and the range allowed.
     """
-    c = scene.hertz()
-    curv = max(abs(1 / r) for body in (scene.body1, scene.body2)
-               for r in (body.Rx, body.Ry) if math.isfinite(r))
+    c = check_scene(scene)
+    r_min = smallest_radius(scene)
+    curv = 1 / r_min
     # rise at the corner (distance sqrt 2 L) over depth L: curv * 2 L**2 / 2 / L = curv L
     extent = min(EXTENT_OVER_A * c.a, MAX_RISE / curv)
     if extent < MIN_EXTENT_OVER_A * c.a:
-        raise ValueError(f"scene {scene.name!r}: the contact is too large for the radii "
-                         f"(a = {c.a:.3g} m against the smallest radius {1 / curv:.3g} m) "
-                         f"for paraboloid-faced blocks of {MIN_EXTENT_OVER_A:g} a; lower the load")
+        raise ValueError(f"scene {scene.name!r}: the contact is too large for the radii: "
+                         f"Hertz's a = {c.a:.3g} m is {c.a / r_min:.3g} times the smallest "
+                         f"radius {r_min:.3g} m; paraboloid-faced blocks of "
+                         f"{MIN_EXTENT_OVER_A:g} a need a/R_min <= "
+                         f"{MAX_RISE / MIN_EXTENT_OVER_A:g} (and >= {_min_a_over_r():g}): "
+                         f"lower the load")
     return extent / c.b
 
 
 def build_block_model(scene: Scene, level: int, quarter: bool | None = None,
                       slave_body: int = 1, penalty_factor: float = PENALTY_FACTOR) -> DeckModel:
-    """Two paraboloid-faced blocks with quadratic tetrahedra."""
+    """Two paraboloid-faced blocks with quadratic tetrahedra.
+
+    Raises
+    ------
+    ValueError
+        Before meshing: :func:`block_extent` refuses the contact's size, the mesh
+        would have more vertices than :data:`fem_validation.mesh.MAX_MESH_NODES`,
+        or an option is out of range.
+    """
     from ..mesh import build
     from ..solve import imposed_approach
 
+    _check_options(slave_body, penalty_factor)
     if quarter is None:
         quarter = scene.symmetric
     if quarter and not scene.symmetric:
@@ -377,10 +476,6 @@ def _level_scale(level: int) -> float:
 
 def _assemble(scene, parts, sets, region, slave_body, level, *, quarter, geometry, h0,
               approach, penalty_factor, info) -> DeckModel:
-    if slave_body not in (1, 2):
-        raise ValueError(f"slave_body must be 1 or 2, got {slave_body!r}")
-    if not penalty_factor > 0:
-        raise ValueError(f"penalty_factor must be > 0, got {penalty_factor!r}")
     nodes = np.vstack([q[0] for q in parts])
     offsets = np.cumsum([0] + [len(q[0]) for q in parts])
     elements = np.vstack([q[1] + off for q, off in zip(parts, offsets, strict=False)])
@@ -399,6 +494,10 @@ def _assemble(scene, parts, sets, region, slave_body, level, *, quarter, geometr
         node_sets[name] = np.unique(face_nodes(elements[el], fc))
     c = scene.hertz()
     penalty = penalty_factor * c.e_star / h0
+    if not math.isfinite(penalty):
+        raise ValueError(f"scene {scene.name!r}: the penalty slope penalty_factor E*/h0 "
+                         f"overflows (E* = {c.e_star:.3g} Pa, h0 = {h0:.3g} m): check the "
+                         f"moduli (SI units: Pa)")
     info = {**info, "penalty_factor": penalty_factor}
     return DeckModel(nodes, elements, body, node_sets, surfaces,
                      f"CONTACT{slave_body}", f"CONTACT{3 - slave_body}", scene, approach,
@@ -480,10 +579,21 @@ def build_model(scene: Scene, level: int, model: str = "auto", slave_body: int =
     slave_body : {1, 2}
         The body whose contact face is the slave surface.
     penalty_factor : float
-        Penalty slope over E*/h0.
+        Penalty slope over E*/h0, finite and > 0.
+
+    Raises
+    ------
+    ValueError
+        Before gmsh runs: a target load that is not a finite number > 0, a
+        contact outside 1e-5 <= a/R_min <= 0.0375 (0.5 for a ball on a plane or
+        in a groove: :func:`check_scene`, :func:`block_extent`), a mesh of more
+        than :data:`fem_validation.mesh.MAX_MESH_NODES` vertices, or an option
+        out of range.
     """
     if model not in ("auto", "quarter", "half", "whole"):
         raise ValueError(f"model must be 'auto', 'quarter', 'half' or 'whole', got {model!r}")
+    _check_options(slave_body, penalty_factor)
+    check_scene(scene)
     if model == "half":
         # paraboloid-faced blocks: the tangential displacement's correction for the
         # clamped far faces (Cerruti at the block's depth) is a block's
