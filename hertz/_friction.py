@@ -45,6 +45,10 @@ concentrates at w = l); inside (l = 0) they vanish. Check there:
 sxx = -pi (4 + nu) mu p0 x / (8 a) for a circle (Hamilton 1983; Johnson eq. 7.47),
 mu p0 pi (4 + nu)/8 at the trailing edge.
 
+Beyond 3e4 times the larger semi-axis the field is Cerruti's field of the resultant
+(2/3) pi a b mu p0 (_far_along_x), within (a/R)^2 of the traction's: the quadrature's
+cancellations grow with the distance there, and its powers of x/a overflow beyond 1e51 a.
+
 Traction along y is the same with the axes exchanged; any direction is their sum.
 Checked against an mpmath quadrature of Cerruti's solution (tests/reference_friction.py):
 within 6.7e-16 mu p0 at 33 points (b/a = 1, 0.5, 0.2; depths 0.01 a to 3 a and the surface
@@ -108,6 +112,9 @@ def _ellipsoidal_coordinate(a2, b2, x2, y2, z2):
             model = np.where(e0 >= 0, 2.0 * z2 / (e0 + root), (root - e0) / (2.0 * g))
             lam = np.where(model < lam, model, lam)   # (NaN where 0/0: keep the bound)
     lam = np.where(inside, 0.0, np.maximum(lam, z2))
+    # each point stops at its own last step (a point's iterations do not depend on the
+    # others of its batch: one point alone and in an array get the same bits)
+    active = np.ones(np.shape(lam), dtype=bool)
     for _ in range(200):
         A, B = a2 + lam, b2 + lam
         f = lam * (e0 + lam * (x2 / (a2 * A) + y2 / (b2 * B))) - z2
@@ -116,8 +123,9 @@ def _ellipsoidal_coordinate(a2, b2, x2, y2, z2):
         step = np.where(inside | (f <= 0), 0.0, f / np.where(df > 0, df, 1.0))
         new = np.maximum(lam - step, z2)      # l >= z^2 (rounding near l = z^2)
         done = ~(new < lam) | (step <= 4e-16 * lam)
-        lam = np.where(new < lam, new, lam)
-        if np.all(done):
+        lam = np.where(active & (new < lam), new, lam)
+        active &= ~done
+        if not active.any():
             break
     return lam
 
@@ -252,16 +260,68 @@ def _sliding_along_x(a, b, nu, x, y, z):
     return sxx, syy, szz, syz, sxz, sxy
 
 
+def _far_along_x(a, b, nu, x, y, z):
+    """sxx, syy, szz, syz, sxz, sxy / (mu p0) for traction along x far from the contact:
+    Cerruti's field of the resultant (2/3) pi a b mu p0 (Johnson, Contact Mechanics,
+    eq. 3.86; the potentials of the module docstring for a point force), 1-d arrays in m.
+
+    The traction is even in x and y, so the field differs from the point force's by
+    terms (a/R)^2 smaller (the quadrupole (a^2/10) d^2/dx^2 + (b^2/10) d^2/dy^2 of it,
+    derived with sympy: at R = 3e4 max(a, b), within 3e-7 of the largest component and
+    6e-19 mu p0; the quadrature's cancellations there cost 2e-6 of it).  Written with
+    the unit vector (l, m, n) = (x, y, z)/R and the factor (a/R)(b/R), nothing overflows
+    or underflows before the result does (the quadrature's powers of x/a overflow beyond
+    R = 1e51 a).  With Q/(2 pi) = a b / 3 and rho = 1:
+    V_x = -l, V_y = -m, V_z = -n, z V_xz = 3 l n^2, z V_xy = 3 l m n, z V_xx = n (3 l^2 - 1),
+    z W_xxx = l n (2 l^2 - (m^2 + n^2)(3 n^2 + 9 n + 6)) / (1 + n)^3,
+    B_xxx = l ((n + 3)(m^2 + n^2) + 2 n) / (1 + n)^3 (l^2 - 1 = -(m^2 + n^2): no
+    cancellation), z W_xxy = m n (l^2 (3 n^2 + 9 n + 8) - (n + 1)(n + 2)) / (1 + n)^3,
+    B_xxy = -m (l^2 (n + 3) - (n + 1)) / (1 + n)^3."""
+    big = np.maximum(np.maximum(np.abs(x), np.abs(y)), z)
+    xs, ys, zs = x / big, y / big, z / big
+    norm = np.sqrt(xs * xs + ys * ys + zs * zs)
+    l, m, n = xs / norm, ys / norm, zs / norm
+    radius = big * norm
+    factor = (a / radius) * (b / radius) / 3.0
+    l2, m2n2 = l * l, m * m + n * n
+    cube = (1.0 + n) * (1.0 + n) * (1.0 + n)
+    zw_xxx = l * n * (2.0 * l2 - m2n2 * (3.0 * n * n + 9.0 * n + 6.0)) / cube
+    b_xxx = l * ((n + 3.0) * m2n2 + 2.0 * n) / cube
+    zw_xxy = m * n * (l2 * (3.0 * n * n + 9.0 * n + 8.0) - (n + 1.0) * (n + 2.0)) / cube
+    b_xxy = -m * (l2 * (n + 3.0) - (n + 1.0)) / cube
+    zv_xz = 3.0 * l * n * n
+    sxx = 2.0 * (1.0 + nu) * -l - zw_xxx + 2.0 * nu * b_xxx
+    syy = zw_xxx + zv_xz - 2.0 * nu * b_xxx
+    szz = -zv_xz
+    syz = -3.0 * l * m * n
+    sxz = -3.0 * l2 * n
+    sxy = -m - zw_xxy + 2.0 * nu * b_xxy
+    return tuple(factor * v for v in (sxx, syy, szz, syz, sxz, sxy))
+
+
+# beyond this many times the larger semi-axis the field is Cerruti's of the resultant
+# (_far_along_x), nearer than it the quadrature's: where the two errors cross
+_FAR = 3e4
+
+
 def _unit_field(a, b, nu, x, y, z):
-    """The six components / (mu p0) for a sliding traction along x, flat arrays."""
-    scale = a
+    """The six components / (mu p0) for a sliding traction along x, flat arrays: the
+    quadrature near the contact, the resultant's field beyond _FAR max(a, b) (each point
+    on its own: one point alone and in an array get the same bits)."""
     out = [np.empty(x.shape) for _ in range(6)]
-    for i in range(0, x.size, _CHUNK):
-        sl = slice(i, i + _CHUNK)
-        parts = _sliding_along_x(1.0, b[sl] / scale[sl], nu[sl], x[sl] / scale[sl],
-                                 y[sl] / scale[sl], z[sl] / scale[sl])
+    far = np.maximum(np.maximum(np.abs(x), np.abs(y)), z) > _FAR * np.maximum(a, b)
+    if far.any():
+        parts = _far_along_x(a[far], b[far], nu[far], x[far], y[far], z[far])
         for o, p in zip(out, parts, strict=True):
-            o[sl] = p
+            o[far] = p
+    near = np.flatnonzero(~far)
+    for i in range(0, near.size, _CHUNK):
+        k = near[i:i + _CHUNK]
+        scale = a[k]
+        parts = _sliding_along_x(1.0, b[k] / scale, nu[k], x[k] / scale, y[k] / scale,
+                                 z[k] / scale)
+        for o, p in zip(out, parts, strict=True):
+            o[k] = p
     return out
 
 

@@ -668,7 +668,16 @@ class LoadPathSpring:
     def step(self, normal_force, increment):
         """Move to the normal force ``normal_force`` [N] (>= 0) with the relative
         tangential displacement ``increment`` [m] along the line; return the tangential
-        force [N]."""
+        force [N], never beyond +-mu P (any increment beyond twice the sliding
+        displacement slides the contact as a whole, the same state whatever its size).
+
+        Raises
+        ------
+        ValueError
+            A normal force or an increment not finite, a negative normal force, or an
+            increment that takes the accumulated displacement beyond the range of a
+            double (magnitude 1.8e308 m); the state is unchanged.
+        """
         load = float(_checked_scalar(normal_force, "normal_force", _interop.N))
         inc = float(_checked_scalar(increment, "increment", _interop.M))
         if not 0.0 <= load < math.inf:
@@ -676,16 +685,40 @@ class LoadPathSpring:
                              f"{load!r}")
         if not math.isfinite(inc):
             raise ValueError(f"increment must be a finite displacement in m, got {inc!r}")
+        displacement = self.displacement + inc
+        if not math.isfinite(displacement):  # checked before any change of the state
+            raise ValueError(
+                f"increment must keep the accumulated displacement within the range of a "
+                f"double (magnitude at most 1.7976931348623157e308 m), got {inc!r} m on "
+                f"{self.displacement!r} m")
         alpha = float(np.cbrt(load))
-        scaled, front = self._bed.move(alpha, inc / self._reach)
+        scaled, front = self._bed.move(
+            alpha, _saturated(inc / self._reach, max(alpha, self._bed.alpha)))
         self.normal_force = load
-        self.displacement += inc
-        self.sliding = alpha > 0.0 and front == 0.0
-        self.force = math.copysign(self._mu * load, scaled) if self.sliding else (
-            self._mu * scaled)
+        self.displacement = displacement
+        limit = self._mu * load
+        # a force that rounds onto or past the limit of friction (springs back on their
+        # limits, not slipped by a hair) is the limit, as TangentialSpring takes it: the
+        # force never exceeds mu P
+        self.sliding = alpha > 0.0 and (front == 0.0 or abs(self._mu * scaled) >= limit)
+        if self.sliding:
+            front = 0.0
+        self.force = math.copysign(limit, scaled) if self.sliding else self._mu * scaled
         self.stick_a = front * self._a_ref
         self.stick_b = front * self._b_ref
         return self.force
+
+
+def _saturated(delta, alpha):
+    """The scaled increment ``delta`` of a step of :class:`LoadPathSpring`, limited to
+    +-4 alpha^2, alpha the larger contact size of the step (before or after it).
+
+    Beyond 2 alpha^2 every spring slides (each carried |u| <= alpha^2 and its limit is
+    at most alpha^2; an entering spring slides beyond a1^2 - a0^2 <= alpha^2), so a
+    larger increment leaves the same state; one of 1e300 m scaled by 3 mu P_ref / (2
+    k_ref) overflows to inf, which the bed would turn into NaN."""
+    bound = 4.0 * alpha * alpha
+    return min(max(delta, -bound), bound)
 
 
 def _checked_scalar(value, name, unit):

@@ -253,17 +253,56 @@ def _virgin_inverse(r):
     return np.minimum(r * (1.0 + t + t * t) / (1.0 + t), 1.0)
 
 
-def _loop_energy(q):
-    """W k / (mu P)^2 for a cycle of amplitude q = Q*/(mu P) (module docstring)."""
+def _loop_energy(limit, q, along):
+    """W [J] of a cycle of amplitude q = Q*/(mu P), limit = mu P [N], along = 1/k [m/N]:
+    (6/5) limit^2 along q^3 (1 + 3s + s^2) / (1 + s + s^2)^3 (module docstring).
+
+    The powers are taken on the mantissas of limit, along and q (in [1/2, 1)) and the
+    exponents added apart, so nothing overflows or underflows before the result itself
+    does (limit^2 alone overflows beyond mu P = 1.3e154, q^3 underflows below 5e-109);
+    where no intermediate product leaves the range of a double these are the bits of
+    the unscaled product (scaling by powers of 2 is exact).  Elementwise products only
+    (no ``**``, which numpy computes for arrays differently from Python for floats), so
+    one contact and an array of them get the same bits."""
     s = np.cbrt(1.0 - q)
     u = 1.0 + s + s * s
-    return 1.2 * q ** 3 * (1.0 + 3.0 * s + s * s) / (u * u * u)
+    g = 1.2 * (1.0 + 3.0 * s + s * s) / (u * u * u)
+    m_limit, e_limit = np.frexp(limit)
+    m_along, e_along = np.frexp(along)
+    m_q, e_q = np.frexp(q)
+    mantissa = g * (m_limit * m_limit) * m_along * (m_q * m_q * m_q)
+    exponent = 2 * e_limit.astype(np.int64) + e_along + 3 * e_q.astype(np.int64)
+    # beyond the int range of ldexp the result is 0 or inf either way
+    exponent = np.clip(exponent, -4000, 4000).astype(np.int32)
+    with np.errstate(over="ignore", under="ignore"):
+        return np.ldexp(mantissa, exponent)
+
+
+# mu P at most this [N]: 3 mu P / 2, the scale of every displacement, stays a double
+_LIMIT_MAX = 1e308
+
+
+def _limit(mu, load):
+    """mu P [N], checked: at most _LIMIT_MAX (beyond, a product overflows to inf and the
+    displacements at zero force are inf * 0 = NaN)."""
+    with np.errstate(over="ignore"):
+        limit = mu * load
+    ok = limit <= _LIMIT_MAX
+    if not np.all(ok):
+        shape = np.shape(limit)
+        i = first_failure(np.broadcast_to(ok, shape))
+        m, p = (float(np.broadcast_to(v, shape).reshape(-1)[i]) for v in (mu, load))
+        raise ValueError(f"mu * load must be at most {_LIMIT_MAX!r} N (3 mu P / 2, the "
+                         f"displacement scale's factor, must be a double), got mu = {m!r} "
+                         f"and load = {p!r} N{index_text(shape, i)}")
+    return limit
 
 
 def _force_ratio(force, mu, load, shape_name="force"):
-    """q = force / (mu P), checked: 0 <= force <= mu P (one pass when all is well)."""
+    """q = force / (mu P), checked: mu P <= _LIMIT_MAX and 0 <= force <= mu P (one pass
+    when all is well)."""
     force = as_float_array(force, shape_name)
-    limit = mu * load
+    limit = _limit(mu, load)
     with np.errstate(invalid="ignore"):
         ok = (force >= 0) & (force <= limit)  # false for NaN; mu P is finite
     if not ok.all():
@@ -545,6 +584,7 @@ def partial_slip(contact, force, mu, direction=0.0) -> Tangential:
             _direction(direction)
             _force_ratio(force, mu, _require_load(contact, "a tangential force"))
             raise
+        _limit(mu, contact.load)
     stick_a, stick_b, slip_area, disp, transverse, tangent, no_slip, sliding = out
     sliding = sliding != 0.0
     fields = (force, mu, direction, stick_a, stick_b, slip_area, disp, transverse, tangent,
@@ -632,11 +672,11 @@ def fretting(contact, amplitude, mu, direction=0.0) -> FrettingLoop:
     load = _require_load(contact, "a tangential force")
     q = _force_ratio(amplitude, mu, load, "amplitude")
     along = _along(contact, direction)
-    limit = mu * load
+    limit = _limit(mu, load)
     amplitude = np.asarray(amplitude, dtype=np.float64)
     shape = np.broadcast_shapes(np.shape(q), np.shape(along))
     reach = 1.5 * limit * along
-    fields = (amplitude, reach * _virgin(q), limit * limit * _loop_energy(q) * along,
+    fields = (amplitude, reach * _virgin(q), _loop_energy(limit, q, along),
               1.0 / along, mu, load, reach)
     return FrettingLoop(*(_broadcast(x, shape) for x in fields))
 
@@ -655,7 +695,8 @@ def tangential_history(contact, forces, mu, direction=0.0):
         The force along ``direction`` [N] at n instants, starting from the
         unloaded state (Q = 0, displacement 0); negative is the opposite way.
         |Q| <= mu P throughout.  The trailing axes broadcast with the contact's
-        shape.
+        shape.  n = 0 (no instants) gives an empty result, as numpy's cumulative
+        functions do.
     mu : float or array_like
         Coefficient of friction [-], > 0.
     direction : float or array_like
@@ -664,7 +705,8 @@ def tangential_history(contact, forces, mu, direction=0.0):
     Returns
     -------
     ndarray, shape (n, ...)
-        The displacement along the force's line at each instant [m].
+        The displacement along the force's line at each instant [m] (shape (0, ...)
+        for n = 0).
 
     Examples
     --------
@@ -683,18 +725,28 @@ def tangential_history(contact, forces, mu, direction=0.0):
     forces = as_float_array(forces, "forces")
     if forces.ndim == 0:
         raise ValueError("forces must be an array of shape (n, ...) of tangential forces in N")
-    _force_ratio(np.abs(forces), mu, load, "forces")  # |Q| <= mu P
+    n, trail = forces.shape[0], forces.shape[1:]  # n = 0: an empty result of shape (0, ...)
+    limit = _limit(mu, load)
     along = _along(contact, direction)
-    limit = mu * load
-    shape = np.broadcast_shapes(forces.shape[1:], np.shape(limit), np.shape(along))
-    flat = np.broadcast_to(forces, (forces.shape[0],) + shape).reshape(forces.shape[0], -1)
+    contacts = np.broadcast_shapes(np.shape(limit), np.shape(along))
+    try:
+        shape = np.broadcast_shapes(trail, contacts)
+    except ValueError:
+        raise ValueError(f"forces must have the shape (n, ...), its trailing axes {trail} "
+                         f"broadcasting with the contacts' shape {contacts}, got the shape "
+                         f"{forces.shape}") from None
+    # the trailing axes aligned with the contacts' (the axis of instants never meets one)
+    forces = np.broadcast_to(forces.reshape((n,) + (1,) * (len(shape) - len(trail)) + trail),
+                             (n,) + shape)
+    _force_ratio(np.abs(forces), mu, load, "forces")  # |Q| <= mu P
+    flat = forces.reshape(n, math.prod(shape))
     lim = np.broadcast_to(limit, shape).reshape(-1)
     reach = np.broadcast_to(1.5 * limit * along, shape).reshape(-1)  # 3 mu P / (2 k)
     out = np.empty_like(flat)
     engine = _Masing(lim.size, lambda x: reach * _virgin(np.minimum(x / lim, 1.0)))
-    for i in range(flat.shape[0]):
+    for i in range(n):
         out[i] = engine.step(flat[i])
-    return out.reshape((forces.shape[0],) + shape)
+    return out.reshape((n,) + shape)
 
 
 class _Masing:
@@ -723,6 +775,19 @@ class _Masing:
         return np.sign(x) * self.f(np.abs(x))
 
     def step(self, x):
+        # differences of two values near the largest double overflow to +-inf: their sign
+        # and comparisons stay right, and the halves below are taken apart
+        with np.errstate(over="ignore"):
+            return self._step(x)
+
+    @staticmethod
+    def _half_difference(x, xr):
+        """(x - xr) / 2, also where x - xr overflows (then x/2 - xr/2; elsewhere these are
+        the same bits but for subnormal halves)."""
+        d = x - xr
+        return np.where(np.isfinite(d), d / 2.0, x / 2.0 - xr / 2.0)
+
+    def _step(self, x):
         move = np.sign(x - self.x)
         reverse = (move != 0) & (self.sense != 0) & (move != self.sense)
         if reverse.any():
@@ -750,7 +815,8 @@ class _Masing:
         top = np.maximum(d - 1, 0)
         xr = self.stack_x[self.rows, top]
         yr = self.stack_y[self.rows, top]
-        y = np.where(d == 0, self._odd(x), yr + 2.0 * self._odd((x - xr) / 2.0))
+        branch = yr + 2.0 * self._odd(self._half_difference(x, xr))
+        y = np.where(d == 0, self._odd(x), branch)
         self.x = np.array(x, dtype=np.float64, copy=True)
         self.y = y
         return y
@@ -850,7 +916,7 @@ class TangentialSpring:
         direction = _direction(direction)
         load = _require_load(contact, "a tangential spring")
         along = _along(contact, direction)
-        limit = mu * load
+        limit = _limit(mu, load)
         self._shape = np.broadcast_shapes(np.shape(limit), np.shape(along))
         self._limit = np.broadcast_to(limit, self._shape).reshape(-1).copy()
         reach = np.broadcast_to(1.5 * limit * along, self._shape).reshape(-1).copy()
@@ -878,15 +944,36 @@ class TangentialSpring:
 
     def step(self, increment):
         """Apply a displacement increment [m] (broadcast to the contacts); return the
-        new tangential force [N]."""
+        new tangential force [N], never beyond +-mu P.
+
+        Raises
+        ------
+        ValueError
+            An increment not finite, or one that takes the accumulated displacement
+            beyond the range of a double (magnitude 1.8e308 m); the state is unchanged.
+        """
         inc = as_float_array(increment, "increment")
         if not np.all(np.isfinite(inc)):
             raise error_at("increment", inc, first_failure(np.isfinite(inc)),
                            "a finite displacement increment in m")
         inc = np.broadcast_to(inc, self._shape).reshape(-1)
-        self._displacement = self._displacement + inc
         engine = self._engine
-        force = engine.step(self._displacement)
+        with np.errstate(over="ignore"):
+            displacement = self._displacement + inc
+            # the engine's own coordinate: the displacement since the contact last slid
+            # as a whole (the force depends on nothing before), so that it stays within
+            # a few 3 mu P / (2 k) and a small step after a long slide is not rounded away
+            x = engine.x + inc
+        ok = np.isfinite(displacement) & np.isfinite(x)
+        if not ok.all():  # checked before any change: the state stays as it was
+            i = first_failure(ok)
+            raise ValueError(
+                f"increment must keep the accumulated displacement within the range of a "
+                f"double (magnitude at most 1.7976931348623157e308 m), got "
+                f"{float(inc[i])!r} m on {float(self._displacement[i])!r} m"
+                f"{index_text(self._shape, i)}")
+        self._displacement = displacement
+        force = engine.step(x)
         # after sliding, with no reversal remembered, the contact keeps sliding
         slid = ~engine.virgin & (engine.depth == 0)
         force = np.where(slid, engine.sense * self._limit, force)
@@ -897,6 +984,8 @@ class TangentialSpring:
             engine.depth[over] = 0
             engine.virgin[over] = False
         engine.y = force  # the point a later reversal starts from
+        # sliding as a whole with no memory: the engine's coordinate starts again at 0
+        engine.x = np.where(over | slid, 0.0, engine.x)
         self._force = force
         self._sliding = over | slid
         return self.force

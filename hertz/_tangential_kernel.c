@@ -24,7 +24,8 @@
  * cos 2t, sin 2t and s are computed here, in code the compiler vectorises
  * (sin_cos: within 2 ulp, 85% correctly rounded; cube_root_unit: within 1 ulp,
  * 89% correctly rounded; measured against mpmath on 20000 arguments, where
- * glibc's cbrt was within 3 ulp; libm's cos and sin beyond |2t| = 1e5),
+ * glibc's cbrt was within 3 ulp; libm's cos and sin beyond |2t| = 1e5, of t beyond
+ * |t| = 2^1022, where 2t overflows),
  * the rest in the order of operations of the numpy code this kernel replaced;
  * the build forbids contraction into fused multiply-adds (setup.py), so every
  * vector width gives the same bits.
@@ -87,6 +88,25 @@ cube_root_unit(double u)
     return u > 0.0 ? c * scale : 0.0;
 }
 
+/* sin 2t and cos 2t from libm, for |2t| > FAST_ANGLE.  Beyond |t| = 2^1022
+ * (8.99e307) 2t overflows: then from libm's sin t and cos t (reduced exactly
+ * by libm) through the double-angle formulas, 2 sin t cos t and
+ * (cos t - sin t)(cos t + sin t) (within a few ulp of 1). */
+static inline void
+libm_sin_cos_twice(double t, double *sin2, double *cos2)
+{
+    double twice = 2.0 * t;
+    if (isfinite(twice)) {
+        *sin2 = sin(twice);
+        *cos2 = cos(twice);
+    }
+    else {
+        double s = sin(t), c = cos(t);
+        *sin2 = 2.0 * s * c;
+        *cos2 = (c - s) * (c + s);
+    }
+}
+
 /* pi a / k along the force and pi a c_across [1/Pa]. */
 typedef struct {
     double along, across;
@@ -123,7 +143,7 @@ hertz_tangential_stiffness_block(ptrdiff_t n, const double *const *in, double *o
             sin_cos(twice, &sin2, &cos2);
         }
         else {
-            cos2 = cos(twice);
+            libm_sin_cos_twice(t, &sin2, &cos2);
         }
         double along = unit_compliance(in[0][i], in[1][i], in[2][i], in[4][i], in[5][i],
                                        in[6][i], in[7][i], cos2, 0.0).along;
@@ -151,13 +171,12 @@ slip_chunk_arrays(ptrdiff_t m, const double *restrict K, const double *restrict 
     for (ptrdiff_t i = 0; i < m; ++i) {
         double limit = mu[i] * load[i];
         double q = force[i] / limit;
-        double twice = 2.0 * direction[i], sin2, cos2;
+        double sin2, cos2;
         if (libm) {
-            cos2 = cos(twice);
-            sin2 = sin(twice);
+            libm_sin_cos_twice(direction[i], &sin2, &cos2);
         }
         else {
-            sin_cos(twice, &sin2, &cos2);
+            sin_cos(2.0 * direction[i], &sin2, &cos2);
         }
         unit_compliances unit = unit_compliance(K[i], alpha[i], lam[i], nu1[i], nu2[i], e1[i],
                                                 e2[i], cos2, sin2);
