@@ -75,8 +75,9 @@ FIELD_SETS = ("axis", "major_plane", "minor_plane")
 MISMATCH = 1.5
 
 #: Default tolerances of :func:`grade` (|value| at most this), from what converged models
-#: reach: our blocks at level 4 are within 0.25% in a, b, p0 (README), CalculiX 2.20 on a
-#: sphere on a block (REFERENCES.md) within 0.4% in a and b from the p^2 fit, p0 -0.8% to
+#: reach: our blocks at level 4 are within 0.25% in a, b, p0 (README), CalculiX 2.20 (G.
+#: Dhondt's program) on a sphere on a block (measured: docs/howto/calculix.md; the works
+#: cited: docs/bibliography.md) within 0.4% in a and b from the p^2 fit, p0 -0.8% to
 #: -1.15% (12.8k to 57.9k nodes), profile RMS 1.3-2.8% of p0, pressure integral +0.65%
 #: against the reaction, the slave body's von Mises maximum 3.1-3.6% low at every mesh
 #: size.  Override per call (``tolerances``) or on the command line (--tolerance NAME=VALUE).
@@ -188,6 +189,14 @@ class GradeMethods:
         return [f"{self.scene}: |{c.name}| = {abs(c.value):.3g} > {c.tolerance:.3g}"
                 for c in self.checks if c.status == "fail"]
 
+    @property
+    def summary(self) -> str:
+        """One line: PASSED, or FAILED and the checks that failed; then the unit hint
+        (:func:`unit_hint`), where there is one."""
+        verdict = ("PASSED" if self.passed else "FAILED: " + ", ".join(
+            c.name for c in self.checks if c.status == "fail"))
+        return f"{verdict}; {self.hint}" if self.hint else verdict
+
 
 @dataclass(frozen=True)
 class Grade(GradeMethods):
@@ -219,6 +228,9 @@ class Grade(GradeMethods):
         the ellipse frame (x major, y minor, z depth into the body).
     details : dict
         The result's details.
+    hint : str
+        Where the result looks off by a power of 1000 (a unit mistake): what is off, by
+        how much, and the likely cause (:func:`unit_hint`); "" otherwise.
     """
 
     scene: str
@@ -235,13 +247,16 @@ class Grade(GradeMethods):
     stress: dict = field(default_factory=dict)
     axis_stress: dict = field(default_factory=dict, repr=False)
     details: dict = field(default_factory=dict)
+    hint: str = ""
 
     def to_dict(self) -> dict:
-        """grade.json: force, the metrics at the top level, passed, checks, details."""
+        """grade.json: force, the metrics at the top level, passed, the unit hint, checks,
+        details."""
         return nan_to_none({
             "scene": self.scene, "source": self.source, "force": self.force,
             "symmetry": self.symmetry, "semi_axes": self.semi_axes, **self.metrics,
-            "passed": self.passed, "checks": [c.to_dict() for c in self.checks],
+            "passed": self.passed, "hint": self.hint,
+            "checks": [c.to_dict() for c in self.checks],
             "hertz": self.hertz, "fem": self.fem, "stress": self.stress,
             "details": self.details})
 
@@ -262,6 +277,168 @@ def nan_to_none(value):
     if isinstance(value, np.bool_):
         return bool(value)
     return value
+
+
+# --- a result off by a power of 1000: a unit mistake -------------------------------------
+
+#: The unit mistakes a hint can name, each a factor the numbers carry, 1000**n: the result's
+#: lengths (as read: a file in mm read as metres has lengths 1000**1, in um 1000**2), its
+#: pressures and stresses, its forces, the scene's radii (mm typed in the SI scene file:
+#: 1000**1) and its moduli E (kPa, MPa, GPa typed for Pa: 1000**-1 to 1000**-3).  An
+#: explanation combines at most MAX_UNIT_MISTAKES of them.
+UNIT_FACTORS = {"length": range(-1, 3), "pressure": range(-3, 4), "force": range(-2, 3),
+                "radius": range(-1, 2), "modulus": range(-3, 1)}
+MAX_UNIT_MISTAKES = 2
+
+#: How each graded quantity, as a ratio result / Hertz with Hertz evaluated at the result's
+#: own force (or approach), scales with the factors of UNIT_FACTORS (exponents, same order):
+#: a ~ (P R / E)^(1/3), p0 ~ (P E^2 / R^2)^(1/3), delta ~ (P^2 / (E^2 R))^(1/3) and Mindlin's
+#: tangential displacement at a given Q / (mu P) likewise, F(delta) ~ E R^(1/2) delta^(3/2),
+#: the pressure integral over the force p L^2 / F; a pressure derived from nodal forces over
+#: the nodes' areas ("nodal force pressure") F / L^2.  Each entry: (exponents, name in a hint).
+UNIT_EXPONENTS = {
+    "semi_axes": ((1, 0, -1 / 3, -1 / 3, 1 / 3), "semi-axes"),
+    "peak_pressure": ((0, 1, -1 / 3, 2 / 3, -2 / 3), "peak pressure"),
+    "nodal_force_pressure": ((-2, 0, 2 / 3, 2 / 3, -2 / 3), "peak pressure (nodal force "
+                                                             "over area)"),
+    "von_mises": ((0, 1, -1 / 3, 2 / 3, -2 / 3), "largest von Mises stress"),
+    "pressure_integral": ((2, 1, -1, 0, 0), "pressure integral over the force"),
+    "approach": ((1, 0, -2 / 3, 1 / 3, 2 / 3), "approach"),
+    "tangential_displacement": ((1, 0, -2 / 3, 1 / 3, 2 / 3), "tangential displacement at "
+                                                               "the first reversal"),
+    "curve_force": ((-3 / 2, 0, 1, -1 / 2, -1), "force at a given approach (least-squares "
+                                                "scale of Hertz's law)"),
+}
+
+#: A ratio counts as a power of 1000 (or as what a unit mistake predicts) within this
+#: factor either way; a graded model is within a few percent of Hertz, a unit mistake is
+#: 10 to 1e9 off, so nothing between is ambiguous.
+UNIT_HINT_FACTOR = 1.3
+
+
+def _times(k: float) -> str:
+    """10**k as '1000x', '1e-6x', '0.1x', '3.2e-5x'."""
+    text = f"{10.0 ** round(k):g}" if abs(k - round(k)) < 0.15 else f"{10.0 ** k:.2g}"
+    return text.replace("e+0", "e").replace("e-0", "e-").replace("e+", "e") + "x"
+
+
+#: Pairs of factors that are one mistake: a system of units (mm, N, MPa) for another.
+UNIT_SYSTEMS = {
+    (("length", 1), ("pressure", -2)): "a file in mm, N, MPa read as SI (m, N, Pa): give "
+                                       "--units mm",
+    (("length", -1), ("pressure", 2)): "a file in SI (m, N, Pa) read as mm, N, MPa: give "
+                                       "--units SI",
+    (("radius", 1), ("modulus", -2)): "a scene in mm, N, MPa where the scene file wants SI "
+                                      "(m, N, Pa)",
+}
+
+#: The words of each unit mistake (factor -> power of 1000 -> words).
+UNIT_WORDS = {
+    "length": {1: "the result's lengths in mm read as m (--units mm)",
+               2: "the result's lengths in um read as m",
+               -1: "the result's lengths in m read as mm (--units SI)"},
+    "pressure": {1: "its pressures 1000x too large (kPa read as MPa?)",
+                 2: "its pressures 1e6x too large (Pa read as MPa?)",
+                 -1: "its pressures 1/1000 of what they should be (kPa read as Pa?)",
+                 -2: "its pressures 1e-6x what they should be (MPa read as Pa?)"},
+    "force": {1: "its forces 1000x too large (mN read as N, or --force in the wrong "
+                 "unit?)",
+              -1: "its forces 1/1000 of what they should be (kN read as N, or --force "
+                  "in the wrong unit?)"},
+    "radius": {1: "the scene's radii in mm where the scene file wants m",
+               -1: "the scene's radii 1/1000 of the model's"},
+    "modulus": {-1: "the scene's E in kPa where the scene file wants Pa",
+                -2: "the scene's E in MPa where the scene file wants Pa",
+                -3: "the scene's E in GPa where the scene file wants Pa"},
+}
+
+
+def _unit_mistakes(n: dict) -> list[str]:
+    """One combination of unit factors (name -> power of 1000) as the mistakes it means,
+    in words."""
+    n = dict(n)
+    out = []
+    for pair, words in UNIT_SYSTEMS.items():
+        if all(n[k] == v for k, v in pair):
+            out.append(words)
+            n.update({k: 0 for k, _ in pair})
+    noun = {"length": "the result's lengths", "pressure": "its pressures",
+            "force": "its force", "radius": "the scene's radii", "modulus": "the scene's E"}
+    return out + [UNIT_WORDS[k].get(v, f"{noun[k]} {_times(3 * v)} what they should be")
+                  for k, v in n.items() if v]
+
+
+def unit_hint(ratios) -> str:
+    """A plain hint where a result's ratios to Hertz look like a unit mistake, else "".
+
+    The one detector of every grade: it looks for the combination of the unit mistakes of
+    :data:`UNIT_FACTORS` (powers of 1000, at most :data:`MAX_UNIT_MISTAKES` of them) that
+    predicts every ratio given within :data:`UNIT_HINT_FACTOR`, the fewest thousands in all
+    first, then the fewest mistakes (a system of units for another, :data:`UNIT_SYSTEMS`,
+    is one; ties are all named).  Where none predicts them all, it names each quantity that
+    is itself off by a power of 1000.
+
+    Parameters
+    ----------
+    ratios : iterable of (str, float)
+        (quantity, result / Hertz): a key of :data:`UNIT_EXPONENTS` and its ratio (a
+        quantity may come more than once, e.g. both semi-axes); NaN, infinite and
+        non-positive ratios are left out.
+
+    Returns
+    -------
+    str
+        One line: what is off, by how much, and the likely cause; "" for a result that is
+        not off by a power of 1000 (every model within tens of percent of Hertz).
+
+    Examples
+    --------
+    >>> hint = unit_hint([("semi_axes", 1000.2), ("semi_axes", 999.0),
+    ...                   ("peak_pressure", 1.01e-6)])
+    >>> hint[:56]
+    "units? semi-axes 1000x Hertz's, peak pressure 1e-6x Hert"
+    >>> hint.split("Hertz's: ")[-1]
+    'a file in mm, N, MPa read as SI (m, N, Pa): give --units mm'
+    >>> unit_hint([("semi_axes", 1.02), ("peak_pressure", 0.98)])
+    ''
+    """
+    import itertools
+
+    obs = [(name, math.log10(r)) for name, r in ratios
+           if isinstance(r, int | float | np.floating) and math.isfinite(r) and r > 0]
+    if not obs or max(abs(x) for _, x in obs) < 0.5:
+        return ""
+    slack = math.log10(UNIT_HINT_FACTOR)
+    best, found = (math.inf, 0), []
+    for powers in itertools.product(*UNIT_FACTORS.values()):
+        total = sum(abs(n) for n in powers)
+        if total == 0 or total > best[0]:
+            continue
+        pred = [3 * sum(e * n for e, n in zip(UNIT_EXPONENTS[name][0], powers, strict=True))
+                for name, _ in obs]
+        if not (all(abs(x - p) <= slack for (_, x), p in zip(obs, pred, strict=True))
+                and any(abs(p) > 0.5 for p in pred)):
+            continue
+        mistakes = _unit_mistakes(dict(zip(UNIT_FACTORS, powers, strict=True)))
+        cost = (total, len(mistakes))
+        if cost > best or len(mistakes) > MAX_UNIT_MISTAKES:
+            continue
+        if cost < best:
+            best, found = cost, []
+        found.append(" and ".join(mistakes))
+    off = {}
+    for name, x in obs:
+        if abs(x) >= 0.5:
+            off.setdefault(UNIT_EXPONENTS[name][1], x)
+    seen = ", ".join(f"{what} {_times(x)} Hertz's" for what, x in off.items())
+    if found:
+        return f"units? {seen}: " + "; or ".join(found)
+    alone = {what: x for what, x in off.items()
+             if abs(x) > 2 and abs(x - 3 * round(x / 3)) <= slack}
+    if not alone:
+        return ""
+    return ("units? " + ", ".join(f"{what} {_times(x)} Hertz's" for what, x in alone.items())
+            + ": check the unit of each")
 
 
 # --- the pieces -------------------------------------------------------------------------
@@ -305,14 +482,18 @@ def fit_ellipse(xy: np.ndarray, p: np.ndarray) -> dict:
     in (-90, 90] degrees (NaN semi-axes where the fit is not an ellipse).
     """
     sel = p > FIT_THRESHOLD * p.max()
-    x, y = xy[sel, 0], xy[sel, 1]
+    # in units of the largest |coordinate| and of p.max(): the columns stay comparable
+    # whatever the units (lstsq drops singular values below eps of the largest)
+    scale = float(np.abs(xy[sel]).max()) or 1.0
+    unit = float(p.max()) if p.max() > 0 else 1.0
+    x, y = xy[sel, 0] / scale, xy[sel, 1] / scale
     design = np.column_stack([np.ones(sel.sum()), -x * x, -x * y, -y * y])
-    (c0, qxx, qxy, qyy), *_ = np.linalg.lstsq(design, p[sel] ** 2, rcond=None)
+    (c0, qxx, qxy, qyy), *_ = np.linalg.lstsq(design, (p[sel] / unit) ** 2, rcond=None)
     w, v = np.linalg.eigh(np.array([[qxx, qxy / 2], [qxy / 2, qyy]]))
     ok = c0 > 0 and w[0] > 0
-    return {"p0": math.sqrt(c0) if c0 > 0 else math.nan,
-            "a": math.sqrt(c0 / w[0]) if ok else math.nan,
-            "b": math.sqrt(c0 / w[1]) if ok else math.nan,
+    return {"p0": unit * math.sqrt(c0) if c0 > 0 else math.nan,
+            "a": scale * math.sqrt(c0 / w[0]) if ok else math.nan,
+            "b": scale * math.sqrt(c0 / w[1]) if ok else math.nan,
             "major_axis_angle_deg": _axis_angle(v, 0), "fit_nodes": int(sel.sum())}
 
 
@@ -721,8 +902,11 @@ def check_symmetry_sides(symmetry: str, xy: np.ndarray, where: str) -> None:
                           f"contact frame): give --symmetry whole, or the frame")
 
 
-def _sanity(result: ContactResult, c, xy, force_nodes, area, where: str) -> None:
-    """Refuse results that cannot be graded against this scene (bad input, not a fail)."""
+def _sanity(result: ContactResult, c, xy, force_nodes, area, where: str, moments: dict,
+            hint: str = "") -> None:
+    """Refuse results that cannot be graded against this scene (bad input, not a fail);
+    the messages end with the unit hint, where there is one."""
+    hint = f"; {hint}" if hint else ""
     mult = result.multiplicity
     check_symmetry_sides(result.symmetry, xy, where)
     if result.pressure is not None and result.normal_force is None:
@@ -733,20 +917,35 @@ def _sanity(result: ContactResult, c, xy, force_nodes, area, where: str) -> None
                 f"{where}the pressure integral ({integral:.6g} N with symmetry "
                 f"{result.symmetry!r}) and the force ({result.force:.6g} N) disagree by a "
                 f"factor {ratio:.3g}: units (--units), symmetry (--symmetry) or the force "
-                f"field contradict each other")
+                f"field contradict each other{hint}")
     total = mult * float(force_nodes.sum())
     if result.normal_force is not None and not 1 / 1.8 < total / result.force < 1.8:
         raise ResultError(f"{where}the nodal contact forces sum to {total:.6g} N with "
                           f"symmetry {result.symmetry!r}, the force is {result.force:.6g} N: "
-                          f"units or symmetry contradict each other")
-    mom = moment_ellipse(xy, force_nodes, result.symmetry != "whole")
-    for name, value, hz in (("semi-major axis", mom["a"], c.a), ("semi-minor axis", mom["b"],
-                                                                 c.b)):
+                          f"units or symmetry contradict each other{hint}")
+    for name, value, hz in (("semi-major axis", moments["a"], c.a),
+                            ("semi-minor axis", moments["b"], c.b)):
         if not 1 / MISMATCH < value / hz < MISMATCH:
             raise ResultError(f"{where}the scene does not match the result: the contact's "
                               f"{name} from the nodal forces is {value:.4g} m, Hertz's at "
                               f"{result.force:.6g} N is {hz:.4g} m (a factor "
-                              f"{value / hz:.3g}); check the scene, --units and the frame")
+                              f"{value / hz:.3g}); check the scene, --units and the frame"
+                              f"{hint}")
+
+
+def _unit_ratios(result: ContactResult, c, moments: dict, fit: dict, area) -> list:
+    """A contact result's ratios to Hertz for :func:`unit_hint`: the semi-axes from the
+    moments, the fitted p0 (of the pressure given, else of nodal force over area), the
+    pressure integral over the force, the approach."""
+    out = [("semi_axes", moments["a"] / c.a), ("semi_axes", moments["b"] / c.b),
+           ("peak_pressure" if result.pressure is not None else "nodal_force_pressure",
+            fit["p0"] / c.p0)]
+    if result.pressure is not None:
+        out.append(("pressure_integral",
+                    result.multiplicity * float(result.pressure @ area) / result.force))
+    if result.approach is not None:
+        out.append(("approach", result.approach / c.delta))
+    return out
 
 
 def grade(result: ContactResult, scene, tolerances: Mapping[str, float] | None = None, *,
@@ -807,12 +1006,14 @@ def grade(result: ContactResult, scene, tolerances: Mapping[str, float] | None =
         p = result.pressure
     else:
         p = np.divide(f, area, out=np.zeros_like(f), where=area > 0)
-    _sanity(result, c, xy, f, area, where)
+    moments = moment_ellipse(xy, f, symmetric)
+    fit = fit_ellipse(xy, p)
+    ratios = _unit_ratios(result, c, moments, fit, area)
+    hint = unit_hint(ratios)
+    _sanity(result, c, xy, f, area, where, moments, hint)
     if semi_axes == "auto":
         semi_axes = "moments" if result.normal_force is not None else "fit"
 
-    moments = moment_ellipse(xy, f, symmetric)
-    fit = fit_ellipse(xy, p)
     active = result.active if result.active is not None else p > 0
     try:
         edge = edge_ellipse(active_edge_points(xy, tri, active), symmetric)
@@ -871,6 +1072,8 @@ def grade(result: ContactResult, scene, tolerances: Mapping[str, float] | None =
                                                     if "field_rms" in s] or [math.nan])
     for name in METRICS:
         metrics.setdefault(name, math.nan)
+    if math.isfinite(metrics["von_mises_rel_err"]):
+        hint = unit_hint([*ratios, ("von_mises", 1 + metrics["von_mises_rel_err"])])
 
     checks = _checks(metrics, tol, METRICS, by_construction)
     passed = all(ch.status != "fail" for ch in checks)
@@ -884,7 +1087,8 @@ def grade(result: ContactResult, scene, tolerances: Mapping[str, float] | None =
              "fit": fit, "edge": edge, "peak_nodal_pressure": float(p.max()),
              "pressure_integral": integral, "approach": result.approach,
              "reaction": result.reaction},
-        profiles=prof, stress=stress_out, axis_stress=axis, details=dict(result.details))
+        profiles=prof, stress=stress_out, axis_stress=axis, details=dict(result.details),
+        hint=hint)
 
 
 def _checks(metrics: dict, tol: dict, names, by_construction=()) -> tuple:
@@ -955,6 +1159,9 @@ def grade_force_approach(approach, force, scene, tolerances: Mapping[str, float]
             return hertz.contact(scene.body1, scene.body2, approach=delta, angle=scene.angle)
     ref = np.array([hertz_at(x).load for x in d])
     err = f / ref - 1
+    # the least-squares scale of Hertz's law, log F = log F_Hertz + log scale: a length
+    # read 1000x too large gives 1000**-1.5
+    scale = float(np.exp(np.mean(np.log(f / ref))))
     slope = np.polyfit(np.log(d), np.log(f), 1)[0] if len(np.unique(d)) > 1 else math.nan
     metrics = {"force_rel_err_max": float(_worst(list(err))),
                "force_rel_err_rms": float(np.sqrt(np.mean(err**2))),
@@ -966,5 +1173,7 @@ def grade_force_approach(approach, force, scene, tolerances: Mapping[str, float]
                  passed=all(ch.status != "fail" for ch in checks),
                  hertz={"a": c.a, "b": c.b, "p0": c.p0, "delta": c.delta,
                         "alpha": float(c.alpha), "load_at_largest_approach": c.load},
-                 fem={"approach": d, "force": f, "hertz_force": ref, "rel_err": err},
-                 details={"kind": "force-approach", "points": int(d.size)})
+                 fem={"approach": d, "force": f, "hertz_force": ref, "rel_err": err,
+                      "scale_of_hertz_law": scale},
+                 details={"kind": "force-approach", "points": int(d.size)},
+                 hint=unit_hint([("curve_force", scale)]))

@@ -81,6 +81,7 @@ from .grade import (
     nan_to_none,
     pressure_profiles,
     surface_triangles,
+    unit_hint,
 )
 from .result import ResultError
 from .tangential_result import TangentialResult
@@ -162,6 +163,10 @@ class TangentialGrade(GradeMethods):
         What could not be graded and why.
     details : dict
         The result's details.
+    hint : str
+        Where the result looks off by a power of 1000 (a unit mistake): what is off, by
+        how much, and the likely cause (:func:`fem_validation.grade.unit_hint`); ""
+        otherwise.
     """
 
     scene: str
@@ -179,15 +184,17 @@ class TangentialGrade(GradeMethods):
     path: dict = field(default_factory=dict, repr=False)
     notes: tuple = ()
     details: dict = field(default_factory=dict)
+    hint: str = ""
 
     def to_dict(self) -> dict:
-        """grade.json: the metrics at the top level, passed, checks, reference, fem, path."""
+        """grade.json: the metrics at the top level, passed, the unit hint, checks,
+        reference, fem, path."""
         checks = [{**c.to_dict(), "meaning": METRICS[c.name][1]} for c in self.checks]
         return nan_to_none({
             "kind": "tangential", "scene": self.scene, "source": self.source,
             "normal_force": self.normal_force, "mu": self.mu, "direction": self.direction,
             "symmetry": self.symmetry, **self.metrics, "passed": self.passed,
-            "checks": checks, "reference": self.reference, "fem": self.fem,
+            "hint": self.hint, "checks": checks, "reference": self.reference, "fem": self.fem,
             "path": {k: v for k, v in self.path.items() if k != "reference_curve"},
             "notes": list(self.notes), "details": self.details})
 
@@ -266,19 +273,21 @@ def stick_ellipse(ellipse_xy: np.ndarray, pressure: np.ndarray, shear: np.ndarra
     """
     g = mu * pressure - shear
     sel = (pressure > 0) & (g > FIT_THRESHOLD * g.max())
-    x, y = ellipse_xy[sel, 0], ellipse_xy[sel, 1]
+    # in units of the largest |coordinate| and of g.max(), as fit_ellipse
+    scale = float(np.abs(ellipse_xy[sel]).max()) if sel.any() else 1.0
+    x, y = ellipse_xy[sel, 0] / scale, ellipse_xy[sel, 1] / scale
     cols = [np.ones(sel.sum()), -x * x, -y * y] + ([-x * y] if cross_term else [])
     nan = {"stick_a": math.nan, "stick_b": math.nan, "angle_deg": math.nan,
            "fit_nodes": int(sel.sum())}
     if sel.sum() < len(cols):
         return nan
-    coef, *_ = np.linalg.lstsq(np.column_stack(cols), g[sel] ** 2, rcond=None)
+    coef, *_ = np.linalg.lstsq(np.column_stack(cols), (g[sel] / g.max()) ** 2, rcond=None)
     a0, qxx, qyy = coef[:3]
     qxy = coef[3] if cross_term else 0.0
     w, v = np.linalg.eigh(np.array([[qxx, qxy / 2], [qxy / 2, qyy]]))
     if not (a0 > 0 and w[0] > 0):
         return nan
-    semi = np.sqrt(a0 / w)
+    semi = scale * np.sqrt(a0 / w)
     k = int(np.argmax(np.abs(v[0])))  # the eigenvector nearer X
     angle = math.degrees(math.atan2(v[1, k], v[0, k]))
     angle = (angle + 90) % 180 - 90
@@ -296,8 +305,29 @@ def _face_triangles(result: TangentialResult, xy: np.ndarray) -> np.ndarray:
     return tri
 
 
-def _sanity(result: TangentialResult, c, xy, area, where: str) -> None:
-    """Refuse results that cannot be graded against this scene (bad input, not a fail)."""
+def _unit_ratios(result: TangentialResult, c, fit: dict, area, along: float) -> list:
+    """A frictional result's ratios to the reference for
+    :func:`fem_validation.grade.unit_hint`: the semi-axes and p0 of the fit of p^2, the
+    pressure integral over P, and the displacement at the end of the ramp against
+    Mindlin's at the force there (where it lies below 0.95 mu P)."""
+    out = [("semi_axes", fit["a"] / c.a), ("semi_axes", fit["b"] / c.b),
+           ("peak_pressure", fit["p0"] / c.p0),
+           ("pressure_integral",
+            result.multiplicity * float(result.pressure @ area) / result.normal_force)]
+    rev = result.reversals
+    i1 = rev[0] if rev else len(result.force) - 1
+    q1 = float(result.force[i1])
+    if 0 < q1 < 0.95 * result.mu * c.load:
+        ref = float(c.tangential(q1, result.mu, along).displacement)
+        out.append(("tangential_displacement", float(result.displacement[i1]) / ref))
+    return out
+
+
+def _sanity(result: TangentialResult, c, xy, area, where: str, fit: dict,
+            hint: str = "") -> None:
+    """Refuse results that cannot be graded against this scene (bad input, not a fail);
+    the messages end with the unit hint, where there is one."""
+    hint = f"; {hint}" if hint else ""
     mult = result.multiplicity
     check_symmetry_sides(result.symmetry, xy, where)
     integral = mult * float(result.pressure @ area)
@@ -306,22 +336,22 @@ def _sanity(result: TangentialResult, c, xy, area, where: str) -> None:
         raise ResultError(f"{where}the pressure integral ({integral:.6g} N with symmetry "
                           f"{result.symmetry!r}) and the normal force "
                           f"({result.normal_force:.6g} N) disagree by a factor {ratio:.3g}: "
-                          f"units, symmetry or the normal force contradict each other")
-    fit = fit_ellipse(xy, result.pressure)
+                          f"units, symmetry or the normal force contradict each other{hint}")
     for name, value, hz in (("semi-major axis", fit["a"], c.a), ("semi-minor axis", fit["b"],
                                                                  c.b)):
         if math.isfinite(value) and not 1 / MISMATCH < value / hz < MISMATCH:
             raise ResultError(f"{where}the scene does not match the result: the contact's "
                               f"{name} from a fit of p^2 is {value:.4g} m, Hertz's at "
                               f"{result.normal_force:.6g} N is {hz:.4g} m (a factor "
-                              f"{value / hz:.3g}); check the scene, the units and the frame")
+                              f"{value / hz:.3g}); check the scene, the units and the frame"
+                              f"{hint}")
     limit = result.mu * result.normal_force
     worst = int(np.argmax(np.abs(result.force)))
     if abs(result.force[worst]) > (1 + FORCE_SLACK) * limit:
         raise ResultError(f"{where}the tangential force {result.force[worst]:.6g} N at path "
                           f"index {worst} exceeds mu P = {limit:.6g} N by more than "
                           f"{FORCE_SLACK:.0%}: units, symmetry (a quarter model's force x4), "
-                          f"mu or the normal force contradict each other")
+                          f"mu or the normal force contradict each other{hint}")
 
 
 def _closing_loop(d, q, i1, i2, end):
@@ -396,7 +426,9 @@ def grade_tangential(result: TangentialResult, scene,
     ellipse_xy = np.column_stack([xy[:, 0] * ct + xy[:, 1] * st, -xy[:, 0] * st + xy[:, 1] * ct])
     tri = _face_triangles(result, xy)
     area = lumped_area(xy, tri)
-    _sanity(result, c, xy, area, where)
+    pressure_fit = fit_ellipse(xy, result.pressure)
+    hint = unit_hint(_unit_ratios(result, c, pressure_fit, area, along))
+    _sanity(result, c, xy, area, where, pressure_fit, hint)
     p, q, q_perp = result.pressure, result.shear_along, result.shear_across
     scale = mu * c.p0
     notes = []
@@ -529,7 +561,7 @@ def grade_tangential(result: TangentialResult, scene,
         profiles=prof,
         path={"displacement": d, "force": path_q, "reference_force": q_ref,
               "branch": [str(b) for b in branch], "reference_curve": (curve_d, curve_q)},
-        notes=tuple(notes), details=dict(result.details))
+        notes=tuple(notes), details=dict(result.details), hint=hint)
 
 
 # --- the report: grade.json, grade.md, grade.png ----------------------------------------
@@ -546,10 +578,15 @@ def _fmt(name: str, value) -> str:
 
 def grade_markdown(g: TangentialGrade, command: str = "") -> str:
     """grade.md: what was graded, the method, every check with its tolerance, the verdict."""
+    from .output import checks_table
+
     r, f = g.reference, g.fem
     failed = [c.name for c in g.checks if c.status == "fail"]
     lines = [f"# Grade against Cattaneo-Mindlin and Mindlin-Deresiewicz: "
-             f"{'PASSED' if g.passed else 'FAILED'}", "", "## What was graded", ""]
+             f"{'PASSED' if g.passed else 'FAILED'}", ""]
+    if g.hint:
+        lines += [f"> {g.hint}", ""]
+    lines += ["## What was graded", ""]
     if command:
         lines.append(f"- command: `{command}`")
     lines += [
@@ -579,15 +616,8 @@ def grade_markdown(g: TangentialGrade, command: str = "") -> str:
               "## Checks", "",
               "Status: PASS / FAIL against the tolerance (|value| at most the tolerance); "
               "*information*: reported, not checked; *not available*: the result does not "
-              "hold what it needs (see the notes).", "",
-              "| check | what it measures | value | tolerance | status |",
-              "|---|---|---|---|---|"]
-    for ch in g.checks:
-        header, meaning = METRICS[ch.name]
-        status = ch.status.upper() if ch.passed is not None else ch.status
-        tolerance = "-" if ch.tolerance is None else f"{ch.tolerance:.2%}"
-        lines.append(f"| {header} (`{ch.name}`) | {meaning.replace('|', chr(92) + '|')} | "
-                     f"{_fmt(ch.name, ch.value)} | {tolerance} | {status} |")
+              "hold what it needs (see the notes).", ""]
+    lines += checks_table(g.checks, METRICS, fmt=_fmt)
     if g.notes:
         lines += ["", "## Notes", ""] + [f"- {n}" for n in g.notes]
     lines += ["", "## Verdict", "",
@@ -607,70 +637,75 @@ def grade_markdown(g: TangentialGrade, command: str = "") -> str:
 
 def plot_grade(g: TangentialGrade, path: Path) -> Path:
     """grade.png: traction profiles along both axes against Cattaneo-Mindlin, the
-    force-displacement loop against Masing, and the checks."""
+    force-displacement loop against Masing, and the checks; titled with the result's file
+    name, the verdict and the unit hint, sized to read at page width (8 inches)."""
     import matplotlib
 
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
 
-    fig, axes = plt.subplots(2, 2, figsize=(13, 9))
+    from .output import figure_title, plot_checks, source_name
+
+    fig = plt.figure(figsize=(8, 10.5))
+    grid = fig.add_gridspec(3, 2, height_ratios=[1, 1, 0.85])
     r = g.reference
     scale = g.mu * r["p0"]
-    for ax, name, semi in zip(axes[0], ("major", "minor"), (r["a"], r["b"]), strict=True):
+    handles = []
+    for col, name, semi in zip((0, 1), ("major", "minor"), (r["a"], r["b"]), strict=True):
+        ax = fig.add_subplot(grid[0, col])
         d = g.profiles.get(name)
         if d is not None:
-            ax.plot(d["s"] / semi, d["hertz"] / scale, "-", color="k",
-                    label="Cattaneo-Mindlin at the snapshot's Q")
-            ax.plot(d["s"] / semi, d["fem"] / scale, "o", ms=3, color="C3",
-                    label=f"result, interpolated (RMS {d['rms']:.1%} of mu p0)")
             s = d["s"] / semi
+            ax.plot(s, d["hertz"] / scale, "-", color="k",
+                    label="Cattaneo-Mindlin at the snapshot's Q")
+            ax.plot(s, d["fem"] / scale, "o", ms=2.5, color="C3",
+                    label="result, interpolated")
             ax.plot(s, np.sqrt(np.clip(1 - s * s, 0, None)), ":", color="0.5",
                     label="mu p (Hertz): the limit of friction")
             key = "stick_a" if name == "major" else "stick_b"
             ax.axvline(r[key] / semi, color="k", lw=0.8, ls="--",
-                       label=f"stick edge, Cattaneo-Mindlin ({r[key] / semi:.4f})")
+                       label="stick edge, Cattaneo-Mindlin")
             fitted = g.fem["stick_fit"][key]
             if math.isfinite(fitted):
                 ax.axvline(fitted / semi, color="C3", lw=0.8, ls=":",
-                           label=f"stick edge, fit to the result ({fitted / semi:.4f})")
-            ax.legend(fontsize=7, loc="lower center")
+                           label="stick edge, fit to the result")
+            if len(ax.get_lines()) > len(handles):
+                handles = ax.get_lines()
         else:
-            ax.text(0.5, 0.5, "not graded (see the notes)", ha="center", transform=ax.transAxes)
-        ax.set_xlabel(f"distance along Hertz's {name} axis / Hertz's "
-                      f"{'a' if name == 'major' else 'b'}")
-        ax.set_ylabel("shear along the load / (mu p0)")
-        ax.set_title(f"tangential traction along the {name} axis", fontsize=9)
+            ax.text(0.5, 0.5, "not graded\n(see the notes)", ha="center",
+                    transform=ax.transAxes)
+        ax.set_xlabel(f"along Hertz's {name} axis / {'a' if name == 'major' else 'b'}")
+        if col == 0:
+            ax.set_ylabel("shear along the load / (mu p0)")
+        ax.set_title(f"tangential traction, {name} axis", fontsize=10)
         ax.grid(True, alpha=0.3)
-    ax = axes[1, 0]
+    ax = fig.add_subplot(grid[1, 0])
     cd, cq = g.path["reference_curve"]
     ax.plot(np.asarray(cd) * 1e6, np.asarray(cq) / (g.mu * g.normal_force), "-", color="k",
-            label="Mindlin-Deresiewicz (Masing's rule) along the result's path")
+            label="Mindlin-Deresiewicz\n(Masing's rule)")
     ax.plot(np.asarray(g.path["displacement"]) * 1e6,
             np.asarray(g.path["force"]) / (g.mu * g.normal_force), "o-", ms=3, lw=0.8,
             color="C3", label="result")
     ax.set_xlabel("tangential displacement [um]")
     ax.set_ylabel("Q / (mu P)")
-    ax.set_title("force against displacement", fontsize=9)
+    ax.set_title("force against displacement", fontsize=10)
     ax.grid(True, alpha=0.3)
-    ax.legend(fontsize=7)
-    ax = axes[1, 1]
-    checked = [c for c in g.checks if c.tolerance is not None and c.passed is not None]
-    ax.barh(range(len(checked)), [abs(c.value) / c.tolerance for c in checked],
-            color=["C2" if c.passed else "C3" for c in checked])
-    ax.axvline(1.0, color="k", lw=1)
-    ax.set_yticks(range(len(checked)))
-    ax.set_yticklabels([f"{c.name} = {_fmt(c.name, c.value)} (tol {c.tolerance:.2%})"
-                        for c in checked], fontsize=7)
-    ax.invert_yaxis()
-    ax.set_xlabel("|value| / tolerance (1 = the limit)")
-    ax.set_title("checks (green pass, red fail)", fontsize=9)
-    fig.suptitle(f"{g.source or g.scene} against Cattaneo-Mindlin / Mindlin-Deresiewicz "
-                 f"({g.scene}): {'PASSED' if g.passed else 'FAILED'}; P = "
-                 f"{g.normal_force:.5g} N, mu = {g.mu:.3g}, load at "
-                 f"{r['direction_in_ellipse_frame_deg']:.3g} deg from the major axis, "
-                 f"{g.symmetry} model", fontsize=9)
+    ax.legend(fontsize=9)
+    key = fig.add_subplot(grid[1, 1])
+    key.axis("off")
+    if handles:
+        key.legend(handles, [h.get_label() for h in handles], loc="center", fontsize=9,
+                   title="traction plots", title_fontsize=9)
+    plot_checks(fig.add_subplot(grid[2, :]), g.checks, METRICS, fmt=_fmt)
+    figure_title(fig, [
+        f"{source_name(g)} against Cattaneo-Mindlin / Mindlin-Deresiewicz: "
+        f"{'PASSED' if g.passed else 'FAILED'}",
+        f"{g.scene}; P = {g.normal_force:.5g} N, mu = {g.mu:.3g}, load at "
+        f"{r['direction_in_ellipse_frame_deg']:.3g} deg from the major axis, "
+        f"{g.symmetry} model",
+        g.hint])
     fig.tight_layout()
-    fig.savefig(path, dpi=110)
+    fig.savefig(path, dpi=120)
     plt.close(fig)
     return path
 

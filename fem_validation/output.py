@@ -1,18 +1,26 @@
-"""What a run writes: VTU files for ParaView, pressure plots, report.md and report.json."""
+"""What a run writes: VTU files for ParaView, pressure plots, report.md and report.json;
+what a grade writes: grade.json, grade.md, grade.png.
+
+The solver's modules (and scikit-fem with them) are imported only by the functions that
+write a run, so that grading another code's result needs none of them.
+"""
 
 from __future__ import annotations
 
 import json
 import math
 from pathlib import Path
+from typing import TYPE_CHECKING
 
 import numpy as np
 
-from .compare import Comparison, ellipse_rotation, recovered_stress
 from .elasticity import von_mises
-from .mesh import BlockMesh
-from .scenes import Scene
-from .solve import ContactSolution
+
+if TYPE_CHECKING:
+    from .compare import Comparison
+    from .mesh import BlockMesh
+    from .scenes import Scene
+    from .solve import ContactSolution
 
 
 def hertz_nodal_stress(c, p: np.ndarray, body: int) -> np.ndarray:
@@ -23,6 +31,8 @@ def hertz_nodal_stress(c, p: np.ndarray, body: int) -> np.ndarray:
     ``c.stress`` is evaluated there at once, and the tensors are turned back
     into the mesh frame.
     """
+    from .compare import ellipse_rotation
+
     rot = ellipse_rotation(c.major_axis_angle, body)
     x, y, z = rot @ p
     exact = c.stress(x, y, np.maximum(z, 0.0), body=body)
@@ -58,6 +68,8 @@ def write_vtu(scene: Scene, mesh: BlockMesh, sol: ContactSolution, out: Path,
         The Hertz contact to write (default: the scene's at the force reached).
     """
     import meshio
+
+    from .compare import recovered_stress
 
     c = scene.hertz(sol.force) if reference is None else reference
     theta = c.major_axis_angle
@@ -260,14 +272,16 @@ def _tol(name: str, tol) -> str:
     return f"{tol:.2f} deg" if name == "angle_err_deg" else f"{tol:.2%}"
 
 
-def checks_table(checks, metrics_doc) -> list[str]:
-    """Markdown rows of a grade's checks: metric, meaning, value, tolerance, status."""
+def checks_table(checks, metrics_doc, fmt=None) -> list[str]:
+    """Markdown rows of a grade's checks: metric, meaning, value, tolerance, status
+    (``fmt(name, value)``: the text of a value, default this module's)."""
+    fmt = _fmt if fmt is None else fmt
     lines = ["| check | what it measures | value | tolerance | status |", "|---|---|---|---|---|"]
     for ch in checks:
         header, meaning = metrics_doc.get(ch.name, (ch.name, ""))
         status = ch.status.upper() if ch.passed is not None else ch.status
         meaning = meaning.replace("|", "\\|")
-        lines.append(f"| {header} (`{ch.name}`) | {meaning} | {_fmt(ch.name, ch.value)} | "
+        lines.append(f"| {header} (`{ch.name}`) | {meaning} | {fmt(ch.name, ch.value)} | "
                      f"{_tol(ch.name, ch.tolerance)} | {status} |")
     return lines
 
@@ -280,6 +294,8 @@ def grade_markdown(g, command: str = "") -> str:
     h = g.hertz
     failed = [c.name for c in g.checks if c.status == "fail"]
     lines = [f"# Grade against Hertz: {'PASSED' if g.passed else 'FAILED'}", ""]
+    if g.hint:
+        lines += [f"> {g.hint}", ""]
     lines += ["## What was graded", ""]
     if command:
         lines.append(f"- command: `{command}`")
@@ -328,18 +344,77 @@ def grade_markdown(g, command: str = "") -> str:
     return "\n".join(lines) + "\n"
 
 
+#: Bars of the checks chart stop at this |value| / tolerance (the value is written beside).
+CHECKS_CLIP = 3.0
+
+
+def source_name(g) -> str:
+    """The graded result's file name without its directories (else the scene's name)."""
+    return Path(g.source).name if g.source else g.scene
+
+
+def figure_title(fig, lines, width: int = 78) -> None:
+    """A figure's title: each line wrapped to ``width`` characters, at a size that reads at
+    page width."""
+    import textwrap
+
+    fig.suptitle("\n".join(textwrap.fill(line, width) for line in lines if line),
+                 fontsize=11)
+
+
+def plot_checks(ax, checks, metrics_doc: dict, fmt=None, tol=None) -> None:
+    """The checks of a grade as horizontal bars of |value| / tolerance (green pass, red
+    fail), one per checked metric, labelled with its short name, its value and tolerance
+    beside the bar; bars stop at :data:`CHECKS_CLIP` (the value says how far beyond).
+
+    Parameters
+    ----------
+    ax : matplotlib Axes
+    checks : sequence of Check
+        Those without a tolerance or a pass/fail status are left out.
+    metrics_doc : dict
+        Metric name -> (short name, meaning), e.g. ``fem_validation.grade.METRICS``.
+    fmt, tol : callable, optional
+        (name, value) -> text of a value and of a tolerance (default: this module's).
+    """
+    fmt = _fmt if fmt is None else fmt
+    tol = _tol if tol is None else tol
+    checked = [c for c in checks if c.tolerance is not None and c.passed is not None]
+    ratio = np.array([abs(c.value) / c.tolerance for c in checked])
+    shown = np.minimum(ratio, CHECKS_CLIP)
+    y = np.arange(len(checked))
+    ax.barh(y, shown, color=["C2" if c.passed else "C3" for c in checked], height=0.6)
+    ax.axvline(1.0, color="k", lw=1)
+    right = max(1.2, float(shown.max()) if len(shown) else 1.0)
+    for k, c in enumerate(checked):
+        ax.text(shown[k] + 0.02 * right, k, f"{fmt(c.name, c.value)} (tol "
+                f"{tol(c.name, c.tolerance)})" + (" >>" if ratio[k] > CHECKS_CLIP else ""),
+                va="center", fontsize=9,
+                bbox={"facecolor": "white", "edgecolor": "none", "pad": 1})
+    ax.set_xlim(0, 1.75 * right)
+    ax.set_yticks(y)
+    ax.set_yticklabels([metrics_doc.get(c.name, (c.name,))[0] for c in checked], fontsize=10)
+    ax.invert_yaxis()
+    ax.set_xlabel("|value| / tolerance (1 = the limit)", fontsize=10)
+    ax.set_title("checks (green pass, red fail)", fontsize=10)
+
+
 def plot_grade(g, path: Path) -> Path:
-    """grade.png: a figure that explains itself (legend, sign convention, tolerances)."""
+    """grade.png: the pressure along Hertz's axes (or, for a force-approach curve, the
+    force and its error) above the checks; titled with the result's file name, the verdict
+    and the unit hint, sized to read at page width (8 inches)."""
     import matplotlib
 
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
 
+    from .grade import CURVE_METRICS, METRICS
+
     curve = g.details.get("kind") == "force-approach"
-    values = ""
-    checked = [c for c in g.checks if c.tolerance is not None and c.passed is not None]
-    fig, axes = plt.subplots(1, 3, figsize=(16, 5.2),
-                             gridspec_kw={"width_ratios": [1, 1, 1.1]})
+    fig = plt.figure(figsize=(8, 8.2))
+    grid = fig.add_gridspec(2, 2, height_ratios=[1, 0.9])
+    axes = [fig.add_subplot(grid[0, 0]), fig.add_subplot(grid[0, 1]),
+            fig.add_subplot(grid[1, :])]
     h = g.hertz
     if curve:
         d, f, ref = (np.asarray(g.fem[k]) for k in ("approach", "force", "hertz_force"))
@@ -347,53 +422,39 @@ def plot_grade(g, path: Path) -> Path:
         axes[0].loglog(d * 1e6, f, "o", ms=3, color="C3", label="result")
         axes[0].set_xlabel("approach delta [um]")
         axes[0].set_ylabel("normal force [N]")
-        axes[0].set_title("force against approach", fontsize=9)
+        axes[0].set_title("force against approach", fontsize=10)
         axes[1].plot(d * 1e6, 100 * np.asarray(g.fem["rel_err"]), "o-", ms=3, color="C3",
                      label="(F - F_Hertz) / F_Hertz")
-        tol = g.check("force_rel_err_max").tolerance
-        if tol is not None:
+        limit = g.check("force_rel_err_max").tolerance
+        if limit is not None:
             for s in (-1, 1):
-                axes[1].axhline(100 * s * tol, color="0.5", ls=":",
+                axes[1].axhline(100 * s * limit, color="0.5", ls=":",
                                 label="tolerance" if s > 0 else None)
         axes[1].set_xlabel("approach delta [um]")
-        axes[1].set_ylabel("relative force error [%]")
-        axes[1].set_title("error along the curve", fontsize=9)
+        axes[1].set_ylabel("force error [%]")
+        axes[1].set_title("error along the curve", fontsize=10)
     else:
         for ax, name, semi in zip(axes[:2], ("major", "minor"), (h["a"], h["b"]), strict=True):
             d = g.profiles[name]
-            ax.plot(d["s"] / semi, d["hertz"] / h["p0"], "-", color="k",
-                    label="Hertz at the force reached")
-            ax.plot(d["s"] / semi, d["fem"] / h["p0"], "o", ms=3, color="C3",
-                    label=f"result, interpolated (RMS {d['rms']:.1%} of p0)")
-            ax.set_xlabel(f"distance along Hertz's {name} axis / Hertz's "
-                          f"{'a' if name == 'major' else 'b'}")
-            ax.set_title(f"contact pressure along Hertz's {name} axis", fontsize=9)
+            ax.plot(d["s"] / semi, d["hertz"] / h["p0"], "-", color="k", label="Hertz")
+            ax.plot(d["s"] / semi, d["fem"] / h["p0"], "o", ms=2.5, color="C3",
+                    label="result")
+            ax.set_xlabel(f"along Hertz's {name} axis / {'a' if name == 'major' else 'b'}")
+            ax.set_title(f"pressure, {name} axis", fontsize=10)
         axes[0].set_ylabel("pressure / Hertz's p0")
-        values = (f"\nHertz: a = {h['a']:.4g} m, b = {h['b']:.4g} m, p0 = {h['p0']:.4g} Pa;  "
-                  f"result: a = {g.fem['a']:.4g} m, b = {g.fem['b']:.4g} m (from the "
-                  f"{g.semi_axes}), p0 = {g.fem['p0']:.4g} Pa (p^2 fit)")
     for ax in axes[:2]:
         ax.grid(True, alpha=0.3)
-        ax.legend(fontsize=7, loc="best" if curve else "upper right")
-    ax = axes[2]
-    names = [c.name for c in checked]
-    ratio = [abs(c.value) / c.tolerance for c in checked]
-    colors = ["C2" if c.passed else "C3" for c in checked]
-    ax.barh(range(len(names)), ratio, color=colors)
-    ax.axvline(1.0, color="k", lw=1)
-    ax.set_yticks(range(len(names)))
-    ax.set_yticklabels([f"{n} = {_fmt(n, c.value)} (tol {_tol(n, c.tolerance)})"
-                        for n, c in zip(names, checked, strict=True)], fontsize=7)
-    ax.invert_yaxis()
-    ax.set_xlabel("|value| / tolerance (1 = the limit)")
-    ax.set_title("checks (green pass, red fail)", fontsize=9)
-    fig.suptitle(f"{g.source or g.scene} against Hertz ({g.scene}): "
-                 f"{'PASSED' if g.passed else 'FAILED'}; force {g.force:.5g} N"
-                 f"{'' if curve else f' (whole model, {g.symmetry} model)'}.  "
-                 f"Errors: (result - Hertz) / Hertz at "
-                 f"{'the same approach' if curve else 'matched force'}.{values}", fontsize=9)
+        ax.legend(fontsize=9, loc="best")
+    plot_checks(axes[2], g.checks, {**METRICS, **CURVE_METRICS})
+    figure_title(fig, [
+        f"{source_name(g)} against Hertz: {'PASSED' if g.passed else 'FAILED'}",
+        f"{g.scene}; force {g.force:.5g} N"
+        + ("" if curve else f" (whole contact, {g.symmetry} model)")
+        + f"; errors (result - Hertz) / Hertz at "
+        + ("the same approach" if curve else "the same force"),
+        g.hint])
     fig.tight_layout()
-    fig.savefig(path, dpi=110)
+    fig.savefig(path, dpi=120)
     plt.close(fig)
     return path
 
