@@ -23,6 +23,9 @@ from pathlib import Path
 
 import numpy as np
 import pytest
+from fem_extra import require
+
+require("skfem", "meshio", "gmsh", "matplotlib")
 
 DATA = Path(__file__).parent / "data" / "calculix"
 CCX = shutil.which("ccx")
