@@ -9,6 +9,8 @@ one compiled pass from the radii, angle and moduli to every field.
 from __future__ import annotations
 
 import math
+import sys
+import warnings
 from dataclasses import dataclass, field
 
 import numpy as np
@@ -19,12 +21,65 @@ from ._validate import (
     broadcast_shape,
     error_at,
     first_failure,
+    index_text,
     int_to_float,
     is_duck_array,
     with_index,
 )
 
-__all__ = ["Body", "Contact", "LineContact", "contact", "line_contact"]
+__all__ = ["A_OVER_R_LIMIT", "Body", "Contact", "HertzValidityWarning", "LineContact", "contact",
+           "line_contact"]
+
+#: The largest a/R at which :func:`contact` and :func:`line_contact` stay silent: a the
+#: semi-major axis (half-width), R the smallest |principal radius| of either body
+#: (planes excluded). Hertz takes each body for a half-space whose surface is a
+#: paraboloid over the contact, which holds for a << R. Finite-element models of real
+#: bodies (docs/explanation/curved-bodies.md) are within 0.35% of Hertz's a, b and p0 up
+#: to a/R = 0.1 and 1.1% off at 0.2 (a ball in a conforming groove), growing as
+#: (a/R)^2: about 3% at this limit (the approach, which grows linearly, about 5%).
+#: Beyond it a :class:`HertzValidityWarning` is issued. A Young's modulus in GPa or MPa
+#: lands far beyond it: a/R grows as E^(-1/3), 1000 times for GPa typed for Pa, still
+#: 10 times with the radii in mm too.
+A_OVER_R_LIMIT = 1.0 / 3.0
+_INVERSE_LIMIT = 1.0 / A_OVER_R_LIMIT
+#: Below this Young's modulus [Pa] the warning suggests E was given in GPa or MPa.
+_SMALL_MODULUS = 1e6
+
+
+class HertzValidityWarning(UserWarning):
+    """A contact too large for Hertz's theory, or input in the wrong units.
+
+    Issued once per call of :func:`contact` or :func:`line_contact` (not once per
+    element) when the semi-major axis a (the half-width of a line contact) exceeds
+    ``A_OVER_R_LIMIT`` = 1/3 of the smallest |principal radius| of either body (planes
+    excluded; a concave partner is larger than the ball it holds, so the ball's radius
+    counts). The message gives how many contacts of the call are beyond it, the
+    largest a/R with its index, and, where a Young's modulus is below 1e6 Pa, that it
+    may have been given in GPa or MPa (hertz takes SI units: m, N, Pa). The results
+    are still Hertz's exact solution; the real bodies depart from it (about 3% in a,
+    b and p0 at the limit, measured by finite elements, and more beyond).
+
+    Dask inputs are not checked (that would compute them).
+
+    Examples
+    --------
+    Young's modulus typed in GPa (210) instead of Pa (210e9) for a 6 mm bearing ball on
+    its race:
+
+    >>> import warnings
+    >>> import hertz
+    >>> ball = hertz.Body.sphere(6e-3, E=210, nu=0.3)
+    >>> race = hertz.Body(Rx=-6.2e-3, Ry=40e-3, E=210, nu=0.3)
+    >>> with warnings.catch_warnings(record=True) as caught:
+    ...     warnings.simplefilter("always")
+    ...     c = hertz.contact(ball, race, load=1500.0)
+    >>> caught[0].category.__name__, f"a = {c.a:.2f} m"
+    ('HertzValidityWarning', 'a = 1.84 m')
+
+    To silence it where large contacts are meant:
+    ``warnings.simplefilter("ignore", hertz.HertzValidityWarning)``.
+    """
+
 
 # given value: (scalar mode, fused ufunc, load pass ufunc)
 _MODES = {"load": (0, _ufuncs.contact_load, _ufuncs.given_load),
@@ -290,8 +345,9 @@ def _geometry_field(k: int, doc: str):
 class Contact:
     """Hertz point contact of two bodies; arrays when any input was an array.
 
-    The ellipse frame has x along the major axis (semi-axis ``a``) and y
-    along the minor axis (semi-axis ``b``).  Array fields are the contact's
+    Made by :func:`contact` (not constructed directly).  The ellipse frame
+    has x along the major axis (semi-axis ``a``) and y along the minor axis
+    (semi-axis ``b``).  Array fields are the contact's
     own read-only arrays (changing an input array afterwards changes
     nothing).  A zero load is a contact too: a = b = p0 = delta = 0, with
     zero stresses.  The fields that depend on the geometry alone (from
@@ -736,6 +792,8 @@ def _solve_geometry(inputs, shape):
 class LineContact:
     """Hertz line contact (2D, per unit length of the contact line).
 
+    Made by :func:`line_contact` (not constructed directly).
+
     Attributes
     ----------
     half_width : float or ndarray
@@ -918,6 +976,91 @@ def _check_body(body, name: str) -> Body:
     return body
 
 
+def _check_size(a, body1: Body, body2: Body, axis: str = "a") -> None:
+    """Issue one HertzValidityWarning where a (float or array; ``axis`` "b" for the
+    half-width of a line contact) exceeds A_OVER_R_LIMIT times the smallest |radius| of
+    the two bodies (a plane's, inf, never counts)."""
+    if type(a) is float:
+        t = a * _INVERSE_LIMIT
+        if (-t < body1.Rx < t or -t < body1.Ry < t or -t < body2.Rx < t
+                or -t < body2.Ry < t):
+            _warn_size(a, body1, body2, axis, (), 0, 1)
+        return
+    radii = (body1.Rx, body1.Ry, body2.Rx, body2.Ry)
+    # most batches are far within the limit: a bound of the smallest |R| over the batch
+    # (exact for one geometry) and the largest a settle them without temporary arrays
+    bound = math.inf
+    for r in radii:
+        if type(r) is float:
+            bound = min(bound, abs(r))
+        elif r.size:
+            low, high = float(np.min(r)), float(np.max(r))
+            bound = min(bound, low if low > 0 else -high if high < 0 else 0.0)
+    cut = _cutoff(bound)
+    if not np.size(a) or np.max(a) <= cut:  # (a NaN, never expected, goes on)
+        return
+    if all(type(r) is float for r in radii):
+        smallest = bound
+        large = a > cut
+    else:
+        radii = [np.abs(r) for r in radii]
+        smallest = np.minimum(np.minimum(radii[0], radii[1]), np.minimum(radii[2], radii[3]))
+        with np.errstate(over="ignore", invalid="ignore"):
+            large = a * _INVERSE_LIMIT > smallest
+    count = int(np.count_nonzero(large))
+    if count:
+        shape = np.shape(large)
+        with np.errstate(over="ignore", invalid="ignore", divide="ignore"):
+            ratio = np.where(large, a / smallest, -np.inf)
+        _warn_size(a, body1, body2, axis, shape, int(np.argmax(ratio.reshape(-1))), count)
+
+
+def _cutoff(radius: float) -> float:
+    """The largest a with fl(a / A_OVER_R_LIMIT) <= radius: ``a > cutoff`` is the scalar
+    test, bit for bit, with one comparison per element."""
+    cut = radius * A_OVER_R_LIMIT
+    while cut * _INVERSE_LIMIT > radius:
+        cut = math.nextafter(cut, -math.inf)
+    while cut < math.inf and math.nextafter(cut, math.inf) * _INVERSE_LIMIT <= radius:
+        cut = math.nextafter(cut, math.inf)
+    return cut
+
+
+def _warn_size(a, body1: Body, body2: Body, axis: str, shape, i: int, count: int) -> None:
+    """The HertzValidityWarning for ``count`` contacts of ``shape``, naming element i
+    (the largest a/R)."""
+    def at(x):
+        return float(np.broadcast_to(x, shape).reshape(-1)[i])
+
+    a_i = at(a)
+    r_i = min(abs(at(r)) for r in (body1.Rx, body1.Ry, body2.Rx, body2.Ry))
+    name = "semi-major axis a" if axis == "a" else "half-width b"
+    where = index_text(shape, i)
+    if not shape:
+        head = (f"the {name} = {a_i:.4g} m is {a_i / r_i:.4g} times the smallest radius of "
+                f"curvature of the bodies (|R| = {r_i:.4g} m)")
+    else:
+        head = (f"{count} of {math.prod(shape)} contacts have a {name} above "
+                f"{A_OVER_R_LIMIT:.3g} of the smallest radius of curvature |R| of their "
+                f"bodies; the largest, {axis}/R = {a_i / r_i:.4g}{where} ({axis} = {a_i:.4g} m, "
+                f"|R| = {r_i:.4g} m)")
+    moduli = ((f"E{k}", at(b.E)) for k, b in ((1, body1), (2, body2)))
+    small = [f"{k} = {value:.4g} Pa" for k, value in moduli if value < _SMALL_MODULUS]
+    if small:
+        hint = (f"; {' and '.join(small)}{where} "
+                f"{'looks like a value' if len(small) == 1 else 'look like values'} in GPa or "
+                "MPa: hertz takes SI units (m, N, Pa)")
+    else:
+        hint = "; if this is not meant, check the units: hertz takes SI units (m, N, Pa)"
+    # stacklevel: the first frame outside hertz, so that the warning names the caller
+    frame, level = sys._getframe(0), 1
+    while frame is not None and frame.f_globals.get("__name__", "").split(".")[0] == "hertz":
+        frame, level = frame.f_back, level + 1
+    warnings.warn(f"{head}: Hertz's theory holds for {axis} << R (real bodies depart from "
+                  f"it by about 3% at {axis}/R = {A_OVER_R_LIMIT:.3g}, more beyond){hint}",
+                  HertzValidityWarning, stacklevel=level)
+
+
 def _finish(values, cls, *extra):
     """The result object; 0-d results become Python floats."""
     if np.ndim(values[0]) == 0:
@@ -1015,11 +1158,13 @@ def contact(body1: Body, body2: Body, load=None, angle=0.0, *, approach=None,
     if (body1._scalar and body2._scalar and (kind_v is float or kind_v is int)
             and (kind_a is float or kind_a is int)):
         try:
-            return _ufuncs.contact(mode, body1.Rx, body1.Ry, body2.Rx, body2.Ry, angle,
-                                   body1.E, body1.nu, body2.E, body2.nu, value)
+            c = _ufuncs.contact(mode, body1.Rx, body1.Ry, body2.Rx, body2.Ry, angle,
+                                body1.E, body1.nu, body2.E, body2.nu, value)
         except OverflowError:  # a Python int beyond the double range: name it
             int_to_float(value, name), int_to_float(angle, "angle")
             raise
+        _check_size(c.a, body1, body2)
+        return c
     if _interop.any_wrapped(value, angle, body1.Rx, body1.Ry, body1.E, body1.nu, body2.Rx,
                             body2.Ry, body2.E, body2.nu):
         return _interop.contact(body1, body2, name, value, angle)  # pandas, xarray, pint
@@ -1034,19 +1179,23 @@ def contact(body1: Body, body2: Body, load=None, angle=0.0, *, approach=None,
     try:
         if math.prod(geometry_shape) == math.prod(shape):
             if not shape:  # numpy scalars or 0-d arrays: the scalar path
-                return _ufuncs.contact(mode, *(float(x) for x in args))
-            return Contact(*fused(*args), _Deferred(geometry, shape),
-                           (body1.nu, body2.nu, body1.E, body2.E))
-        # One geometry carries many loads: solve each geometry once and
-        # broadcast its fields (read-only views) over the loads.
-        coefficients = _ufuncs.contact_coefficients(*geometry)
-        fields = coefficients[:9]
-        given_values = given(fields[0], *coefficients[9:], args[9])
-        return Contact(*given_values, tuple(np.broadcast_to(x, shape) for x in fields),
-                       (body1.nu, body2.nu, body1.E, body2.E))
+                c = _ufuncs.contact(mode, *(float(x) for x in args))
+            else:
+                c = Contact(*fused(*args), _Deferred(geometry, shape),
+                            (body1.nu, body2.nu, body1.E, body2.E))
+        else:
+            # One geometry carries many loads: solve each geometry once and
+            # broadcast its fields (read-only views) over the loads.
+            coefficients = _ufuncs.contact_coefficients(*geometry)
+            fields = coefficients[:9]
+            given_values = given(fields[0], *coefficients[9:], args[9])
+            c = Contact(*given_values, tuple(np.broadcast_to(x, shape) for x in fields),
+                        (body1.nu, body2.nu, body1.E, body2.E))
     except ValueError as exc:
         err = _first_error(_ufuncs.contact_status, _ufuncs.contact, args, shape, (mode,))
         raise (err or exc) from None
+    _check_size(c.a, body1, body2)
+    return c
 
 
 def _kept_arg(value, name):
@@ -1104,9 +1253,11 @@ def line_contact(body1: Body, body2: Body, load_per_length) -> LineContact:
     if body1._scalar and body2._scalar and (kind is float or kind is int):
         if kind is int:
             load_per_length = int_to_float(load_per_length, "load_per_length")
-        return LineContact(*_ufuncs.line_contact(body1.Rx, body1.Ry, body2.Rx, body2.Ry,
-                                                 body1.E, body1.nu, body2.E, body2.nu,
-                                                 load_per_length), (body1.nu, body2.nu))
+        lc = LineContact(*_ufuncs.line_contact(body1.Rx, body1.Ry, body2.Rx, body2.Ry,
+                                               body1.E, body1.nu, body2.E, body2.nu,
+                                               load_per_length), (body1.nu, body2.nu))
+        _check_size(lc.half_width, body1, body2, "b")
+        return lc
     if _interop.any_wrapped(load_per_length, body1.Rx, body1.Ry, body1.E, body1.nu, body2.Rx,
                             body2.Ry, body2.E, body2.nu):
         return _interop.line_contact(body1, body2, load_per_length)  # pandas, xarray, pint
@@ -1117,8 +1268,10 @@ def line_contact(body1: Body, body2: Body, load_per_length) -> LineContact:
     names = [n for n in _GEOMETRY_NAMES if n != "angle"] + ["load_per_length"]
     shape = broadcast_shape(**dict(zip(names, args, strict=True)))
     try:
-        return _finish(_ufuncs.line(*args), LineContact, (body1.nu, body2.nu))
+        lc = _finish(_ufuncs.line(*args), LineContact, (body1.nu, body2.nu))
     except ValueError as exc:
         err = _first_error(_ufuncs.line_status, _ufuncs.line_contact, args, shape)
         raise (err or exc) from None
+    _check_size(lc.half_width, body1, body2, "b")
+    return lc
 

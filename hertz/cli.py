@@ -19,7 +19,11 @@ default) and the default scene; both are generated from ``SCENE_KEYS``,
 
 Errors (bad values, a missing or oversized file, no Hertz contact, output
 that cannot be written) print one line on stderr and exit with status 2.
-``--json`` prints strict JSON: a value that overflows a double is ``null``.
+A contact too large for Hertz's theory (a > ``hertz.A_OVER_R_LIMIT`` times the
+smallest radius: often a Young's modulus in GPa) adds one warning line on stderr
+after the output; the status stays 0.  Negative numbers go as written
+(``--r2x -6.6e-3``).  ``--json`` prints strict JSON: a value that overflows a
+double is ``null``; its keys are listed in docs/howto/command-line.md.
 """
 
 from __future__ import annotations
@@ -29,13 +33,15 @@ import io
 import json
 import math
 import os
+import re
 import sys
 import tomllib
+import warnings
 
 import numpy as np
 
 from . import __version__
-from ._contact import Body, contact
+from ._contact import Body, HertzValidityWarning, contact
 
 DEFAULT_SCENE = {
     "name": "bearing ball on inner race (default scene)",
@@ -75,7 +81,22 @@ _MAX_SCENE_BYTES = 1 << 20
 _PLOT_EXTRA = "pip install 'hertz-contact[plot]'"
 
 
+#: A value on the command line, not an option, where it starts with '-' and a digit, '.' and a
+#: digit, "inf" or "nan": every negative number as written (-6.6e-3, -.5, -1E+3, -inf,
+#: -Infinity), and typos of one (-5e) that the option's own check then names. argparse's
+#: own pattern takes only -12 and -1.5, and says "expected one argument" for the rest.
+_NEGATIVE_NUMBER = re.compile(r"^-(?:\.?\d|inf|nan)", re.IGNORECASE)
+
+
 class _Parser(argparse.ArgumentParser):
+    """argparse with one-line errors and negative numbers as written: ``--r2x -6.6e-3``
+    and ``--r2x -inf`` give the option its value (argparse would take them for options
+    and say "expected one argument"); the option's own check then judges it."""
+
+    def __init__(self, *args, **kwargs):
+        super().__init__(*args, **kwargs)
+        self._negative_number_matcher = _NEGATIVE_NUMBER
+
     def error(self, message):  # one line, status 2
         raise _UsageError(message)
 
@@ -379,13 +400,28 @@ def _body(spec: dict, name: str) -> Body:
 
 
 def _solve(scene: dict):
+    """(body1, body2, the contact, the warnings to print): the warnings are the messages
+    of the HertzValidityWarning of the contact, if any (a contact too large for Hertz's
+    theory, or a unit mistake), printed by the caller once the output is written."""
     body1, body2 = _body(scene["body1"], "body1"), _body(scene["body2"], "body2")
-    angle = math.radians(scene.get("angle_deg", 0.0))
+    degrees = scene.get("angle_deg", 0.0)
+    if not math.isfinite(degrees):
+        raise _UsageError(f"--angle-deg (scene key angle_deg) must be a finite angle in "
+                          f"degrees, got {degrees!r}")
     kwargs = {"approach": scene["approach"]} if "approach" in scene else {"load": scene["load"]}
-    try:
-        return body1, body2, contact(body1, body2, angle=angle, **kwargs)
-    except TypeError as exc:
-        raise _UsageError(str(exc)) from None
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always", HertzValidityWarning)
+        try:
+            c = contact(body1, body2, angle=math.radians(degrees), **kwargs)
+        except TypeError as exc:
+            raise _UsageError(str(exc)) from None
+    notes = []
+    for w in caught:
+        if issubclass(w.category, HertzValidityWarning):
+            notes.append(str(w.message))
+        else:  # not ours: shown as it would have been
+            warnings.showwarning(w.message, w.category, w.filename, w.lineno)
+    return body1, body2, c, notes
 
 
 _MAXIMA = ("tau_max", "z_tau_max", "von_mises", "z_von_mises", "tau_orthogonal",
@@ -434,10 +470,17 @@ def _stresses(scene, body1, body2, c, yield_strength) -> dict:
 _CONTACT_FIELDS = ("a", "b", "p0", "delta", "load", "ellipticity", "alpha", "m", "K", "E",
                    "e_star", "rho_x", "rho_y", "rho_sum", "major_axis_angle", "p_mean", "area",
                    "stiffness")
+#: The names of the output (table and --json) for Contact's fields where they differ: the
+#: elliptic integrals K(m), E(m) are ellipk, ellipe (as scipy.special names them), so that
+#: E is never read as Young's modulus (the scene's E).
+_OUTPUT_NAMES = {"K": "ellipk", "E": "ellipe"}
+#: Old keys of --json, still written (same values) for one release beside their new names
+#: and listed in the output's "deprecated_keys" as {old: new}; then removed.
+_DEPRECATED_KEYS = dict(_OUTPUT_NAMES)
 
 
 def _fields(c) -> dict:
-    return {k: _finite(getattr(c, k), k) for k in _CONTACT_FIELDS}
+    return {_OUTPUT_NAMES.get(k, k): _finite(getattr(c, k), k) for k in _CONTACT_FIELDS}
 
 
 def _tangential(scene, c) -> dict | None:
@@ -523,7 +566,7 @@ def _table(scene, body1, body2, f) -> str:
         ("major axis angle", _g(angle, " deg (from body 1's x axis)")),
         ("E* (reduced modulus)", _si(f["e_star"], "Pa")),
         ("rho_x, rho_y", f"{_g(f['rho_x'])}, {_g(f['rho_y'])} 1/m"),
-        ("elliptic m, K(m), E(m)", f"{_g(f['m'])}, {_g(f['K'])}, {_g(f['E'])}"),
+        ("elliptic m, K(m), E(m)", f"{_g(f['m'])}, {_g(f['ellipk'])}, {_g(f['ellipe'])}"),
     ]
     lines = [f"Hertz point contact: {_printable(scene['name'])}"]
     for i, b in ((1, body1), (2, body2)):
@@ -538,9 +581,11 @@ def _table(scene, body1, body2, f) -> str:
     return "\n".join(lines)
 
 
-def _json(scene, fields, stresses, tangential) -> str:
+def _json(scene, fields, stresses, tangential, notes) -> str:
     extra = {} if tangential is None else {"tangential": tangential}
-    return json.dumps({"scene": scene["name"], **fields, "stresses": stresses, **extra},
+    old = {key: fields[new] for key, new in _DEPRECATED_KEYS.items()}
+    return json.dumps({"scene": scene["name"], **fields, "stresses": stresses, **extra,
+                       "warnings": notes, **old, "deprecated_keys": _DEPRECATED_KEYS},
                       allow_nan=False)
 
 
@@ -634,14 +679,24 @@ def _silence_stdout() -> None:
         pass
 
 
+def _warn(notes) -> None:
+    """Each warning as one line on stderr, after the output: the exit status stays 0."""
+    for note in notes:
+        _message("warning", note)
+
+
 def _error(message: str) -> None:
+    _message("error", message)
+
+
+def _message(kind: str, message: str) -> None:
     if sys.stderr is None:
         return
     line = " ".join(str(message).split("\n"))
     if len(line) > 1000:
         line = line[:997] + "..."
     try:
-        _write(f"hertz: error: {line}", sys.stderr)
+        _write(f"hertz: {kind}: {line}", sys.stderr)
     except (_UsageError, _ReaderLeftError):
         pass
 
@@ -739,22 +794,26 @@ def _run(argv) -> int:
     # Overflow and underflow are reported as such (overflow, null); a NaN is an error
     # (_finite): numpy's floating-point warnings would only repeat them on stderr.
     with np.errstate(all="ignore"):
-        body1, body2, c = _solve(scene)
+        body1, body2, c, notes = _solve(scene)
         if args.print_scene is not None:
             _print_scene(scene, args.print_scene)
+            _warn(notes)
             return 0
         fields = _fields(c)
         tangential = _tangential(scene, c)
-        stresses = _stresses(scene, body1, body2, c, args.yield_strength)
+        with warnings.catch_warnings():  # the 1 N contact of the first-yield load: not the scene's
+            warnings.simplefilter("ignore", HertzValidityWarning)
+            stresses = _stresses(scene, body1, body2, c, args.yield_strength)
         if args.plot is not None:
             _plot(c, scene, args.plot)
     if args.json:
-        text = _json(scene, fields, stresses, tangential)
+        text = _json(scene, fields, stresses, tangential, notes)
     else:
         text = "\n".join([_table(scene, body1, body2, fields),
                           *([] if tangential is None else _tangential_table(tangential)),
                           *_stress_table(stresses, args.yield_strength, not c.a > 0)])
     _write(text)
+    _warn(notes)
     return 0
 
 
