@@ -73,7 +73,6 @@ nb_merge_streams = True
 # api/index.md) from them before the build, so a new public name is documented without
 # touching the pages; autosummary writes a stub page for each (api/generated/).
 API_MODULES = ("hertz", "hertz.methods", "fem_validation")
-RESULT_TYPES = ("hertz._stress.Subsurface", "hertz._stress.LineSubsurface")
 autosummary_imported_members = True
 autodoc_typehints = "none"
 autodoc_default_options = {"members": True, "inherited-members": False}
@@ -120,11 +119,6 @@ def api_names_rst() -> str:
                 "   :no-index:", "", f".. currentmodule:: {module_name}", "",
                 ".. autosummary::", "   :toctree: generated", "   :nosignatures:", "",
                 *(f"   {n}" for n in sorted(code, key=lambda n: (not n[0].isupper(), n))), ""]
-        if module_name == "hertz":
-            out += ["Returned by ``Contact.subsurface`` and ``LineContact.subsurface``:", "",
-                    f".. currentmodule:: {RESULT_TYPES[0].rsplit('.', 1)[0]}", "",
-                    ".. autosummary::", "   :toctree: generated", "   :nosignatures:", "",
-                    *(f"   {n.rsplit('.', 1)[1]}" for n in RESULT_TYPES), ""]
         if data:
             out += ["Constants:", ""]
         for n in data:

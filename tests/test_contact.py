@@ -11,6 +11,10 @@ from reference import contact_ref
 
 import hertz
 
+# scenes far outside Hertz's a << R on purpose (ranges, extremes): the warning is tested
+# in tests/test_newcomer.py
+pytestmark = pytest.mark.filterwarnings("ignore::hertz.HertzValidityWarning")
+
 STEEL = dict(E=210e9, nu=0.3)
 SCENES = {
     "sphere on plane": ((0.01, 0.01, 210e9, 0.3), (math.inf, math.inf, 210e9, 0.3), 100.0, 0.0),

@@ -23,6 +23,10 @@ from reference import contact_ref, curvatures_ref
 
 import hertz
 
+# scenes far outside Hertz's a << R on purpose (ranges, extremes): the warning is tested
+# in tests/test_newcomer.py
+pytestmark = pytest.mark.filterwarnings("ignore::hertz.HertzValidityWarning")
+
 STEEL = (210e9, 0.3)
 ALUMINIUM = (70e9, 0.33)
 #: rho_x / rho_y beyond which hertz raises "within rounding of a line contact" (2^1022)

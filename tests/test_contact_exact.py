@@ -19,6 +19,10 @@ from reference import contact_ref
 
 import hertz
 
+# scenes far outside Hertz's a << R on purpose (ranges, extremes): the warning is tested
+# in tests/test_newcomer.py
+pytestmark = pytest.mark.filterwarnings("ignore::hertz.HertzValidityWarning")
+
 STEEL = (210e9, 0.3)
 
 

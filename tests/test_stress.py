@@ -21,6 +21,10 @@ import hertz
 from hertz._stress import load_for_p0
 from hertz.cli import main
 
+# scenes far outside Hertz's a << R on purpose (ranges, extremes): the warning is tested
+# in tests/test_newcomer.py
+pytestmark = pytest.mark.filterwarnings("ignore::hertz.HertzValidityWarning")
+
 STEEL = (210e9, 0.3)
 
 
