@@ -105,12 +105,58 @@ def _array(value, name: str, source: str, shape: tuple, dtype=np.float64,
     return a
 
 
+#: The bounds of a contact surface's coordinates [m]: within 1000 km of the model's origin,
+#: spanning at least a picometre, and spanning at least this fraction of their distance
+#: from the origin (else double precision cannot tell its nodes apart).
+MAX_COORDINATE = 1e6
+MIN_EXTENT = 1e-12
+MIN_RELATIVE_EXTENT = 1e-8
+#: Nodes whose second principal spread is below this fraction of the first lie on a line.
+LINE_TOLERANCE = 1e-9
+
+
+def _on_a_line(xy: np.ndarray) -> bool:
+    """True where points (n, d) lie on one straight line (or one point), to LINE_TOLERANCE."""
+    centred = xy - xy.mean(axis=0)
+    size = np.abs(centred).max()
+    if not size > 0:
+        return True
+    spread = np.linalg.svd(centred / size, compute_uv=False)
+    return not spread[1] > LINE_TOLERANCE * spread[0]
+
+
 def surface_points(points, source: str) -> np.ndarray:
-    """The (n, 3) contact-surface nodes of a result, n >= 3, validated and read-only."""
+    """The (n, 3) contact-surface nodes of a result, validated and read-only.
+
+    Raises
+    ------
+    ResultError
+        Fewer than 3 nodes, a non-finite coordinate, coordinates beyond
+        :data:`MAX_COORDINATE` m, a surface spanning less than :data:`MIN_EXTENT` m or
+        less than :data:`MIN_RELATIVE_EXTENT` of its distance from the origin (a unit
+        mistake, or a scale at which no triangulation can be made), nodes on one line.
+    """
+    w = _where(source)
     pts = _array(points, "points", source, (None, 3))
     if len(pts) < 3:
-        raise ResultError(f"{_where(source)}field 'points' must hold 3 or more contact-surface "
+        raise ResultError(f"{w}field 'points' must hold 3 or more contact-surface "
                           f"nodes, got {len(pts)}")
+    scale = float(np.abs(pts).max())
+    extent = float(np.ptp(pts, axis=0).max())
+    if not scale <= MAX_COORDINATE:
+        raise ResultError(f"{w}field 'points': a coordinate is {scale:.6g} m; a contact "
+                          f"surface lies within {MAX_COORDINATE:g} m of its model's origin: "
+                          f"are the units right?")
+    if not extent >= MIN_EXTENT:
+        raise ResultError(f"{w}field 'points': the contact surface spans {extent:.6g} m; it "
+                          f"must span at least {MIN_EXTENT:g} m: are the units right?")
+    if not extent >= MIN_RELATIVE_EXTENT * scale:
+        raise ResultError(f"{w}field 'points': the contact surface spans {extent:.6g} m at "
+                          f"{scale:.6g} m from the model's origin: too far for double precision "
+                          f"to resolve its nodes; move the origin nearer to the contact")
+    if _on_a_line(pts):
+        raise ResultError(f"{w}field 'points': the {len(pts)} nodes lie on one line: a "
+                          f"contact surface spans an area")
     return pts
 
 
@@ -127,6 +173,9 @@ def _check_frame_and_triangles(result, n: int) -> None:
     if not isinstance(result.frame, ContactFrame):
         raise ResultError(f"{w}field 'frame' must be a ContactFrame, "
                           f"got {type(result.frame).__name__}")
+    if _on_a_line(result.frame.to_frame(result.points)[:, :2]):
+        raise ResultError(f"{w}field 'frame': seen along its normal {result.frame.normal}, "
+                          f"the {n} nodes lie on one line: the normal lies in the surface")
     if result.triangles is not None:
         tri = _array(result.triangles, "triangles", result.source, (None, 3), dtype=np.int64)
         if tri.size and (tri.min() < 0 or tri.max() >= n):

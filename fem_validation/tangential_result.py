@@ -95,6 +95,52 @@ def path_reversals(displacement) -> tuple[int, ...]:
     return tuple(int(moving[j + 1]) for j in turns)  # the start of the step back
 
 
+def check_path(displacement, force, source: str = "", lines=None):
+    """A tangential path (displacement [m], force [N]) as read-only arrays, checked: two
+    or more finite points of equal number, starting at 0 and rising first.
+
+    Parameters
+    ----------
+    displacement, force : array_like, shape (k,)
+    source : str
+        The file (or solver) for the messages.
+    lines : array_like of int, shape (k,), optional
+        The file's line of each point: messages name the line instead of the index.
+
+    Returns
+    -------
+    (ndarray, ndarray)
+
+    Raises
+    ------
+    ResultError
+        Naming the source, the field and the index (or line).
+    """
+    w = _where(source)
+
+    def at(i):
+        return f"line {int(lines[i])}" if lines is not None else f"index {i}"
+
+    d = _array(displacement, "displacement", source, (None,))
+    k = len(d)
+    if k < 2:
+        raise ResultError(f"{w}field 'displacement' must hold a path of 2 or more points, "
+                          f"got {k}")
+    q = _array(force, "force", source, (k,))
+    scale = float(np.abs(d).max())
+    if not scale > 0:
+        raise ResultError(f"{w}field 'displacement' never leaves 0: nothing was loaded")
+    if abs(d[0]) > 1e-9 * scale:
+        raise ResultError(f"{w}field 'displacement' must start at 0 (the unloaded state), "
+                          f"got {d[0]!r} at {at(0)}")
+    first = int(np.argmax(d != d[0]))
+    if d[first] < d[0]:
+        raise ResultError(f"{w}field 'displacement' must rise first (the ramp along "
+                          f"'direction'), got {d[first]!r} at {at(first)}: reverse the "
+                          f"direction (add pi) and the signs of displacement and force")
+    return d, q
+
+
 @dataclass(frozen=True)
 class TangentialResult:
     """One frictional contact result (normal load held, tangential path), in SI.
@@ -165,23 +211,8 @@ class TangentialResult:
         object.__setattr__(self, "mu", _number(self.mu, "mu", s, positive=True))
         object.__setattr__(self, "direction", _number(self.direction, "direction", s))
 
-        d = _array(self.displacement, "displacement", s, (None,))
+        d, q = check_path(self.displacement, self.force, s)
         k = len(d)
-        if k < 2:
-            raise ResultError(f"{w}field 'displacement' must hold a path of 2 or more points, "
-                              f"got {k}")
-        q = _array(self.force, "force", s, (k,))
-        scale = float(np.abs(d).max())
-        if not scale > 0:
-            raise ResultError(f"{w}field 'displacement' never leaves 0: nothing was loaded")
-        if abs(d[0]) > 1e-9 * scale:
-            raise ResultError(f"{w}field 'displacement' must start at 0 (the unloaded state), "
-                              f"got {d[0]!r} at index 0")
-        first = int(np.argmax(d != d[0]))
-        if d[first] < d[0]:
-            raise ResultError(f"{w}field 'displacement' must rise first (the ramp along "
-                              f"'direction'), got {d[first]!r} at index {first}: reverse the "
-                              f"direction (add pi) and the signs of displacement and force")
         object.__setattr__(self, "displacement", d)
         object.__setattr__(self, "force", q)
 

@@ -403,7 +403,8 @@ def write_csvs(tmp_path, r, units="SI", meta=True, quarter_forces=True, stick=Tr
     if meta:
         lines += [f"# mu = {r.mu!r}", f"# direction_deg = {math.degrees(r.direction)!r}",
                   f"# normal_force = {float(r.normal_force) / mult!r}", f"# units = {units}"]
-    lines.append("x [m],y,z,p,qx,qy" + (",stick" if stick else ""))
+    x_unit = "mm" if units == "mm" else "m"  # a column's unit must agree with the file's
+    lines.append(f"x [{x_unit}],y,z,p,qx,qy" + (",stick" if stick else ""))
     for pt, p, q, s in zip(r.points, r.pressure, r.shear, r.stick, strict=True):
         row = [*(pt * length), p * stress, *(q * stress)] + ([int(s)] if stick else [])
         lines.append(",".join(repr(float(v)) for v in row))

@@ -28,7 +28,7 @@ from pathlib import Path
 
 import numpy as np
 
-from ..result import MULTIPLICITY, ContactFrame, ContactResult, ResultError
+from ..result import MULTIPLICITY, ContactFrame, ContactResult, ResultError, surface_points
 
 #: Units of a file -> (metres per length unit, newtons per force unit, pascals per
 #: pressure unit).
@@ -136,7 +136,7 @@ def finish(points, pressure, normal_force, force, symmetry, frame, triangles=Non
            stress=(), source="", details=None, weight=None) -> ContactResult:
     """Detect what is not given and build the ContactResult (SI inputs; ``force`` of the
     model in the file)."""
-    pts = np.asarray(points, dtype=float)
+    pts = surface_points(points, source)  # finite, an area, a scale Hertz and qhull handle
     if weight is None:
         weight = pressure if pressure is not None else normal_force
     if weight is None:
@@ -183,7 +183,8 @@ def read_result(path, *, units: str | None = None, symmetry: str | None = None,
     ----------
     path : path
     units : {"SI", "m", "mm"}, optional
-        Default: a CSV's ``# units`` line, else SI.
+        Default: a CSV's ``# units`` line, else the units its columns name
+        (``x [mm]``), else SI.
     symmetry : {"whole", "half", "quarter"}, optional
         Detected where not given.
     force : float, optional
@@ -202,7 +203,8 @@ def read_result(path, *, units: str | None = None, symmetry: str | None = None,
     """
     path = Path(path)
     if not path.is_file():
-        raise ResultError(f"{path}: no such file")
+        raise ResultError(f"{path}: " + ("not a regular file (a folder, a device or a pipe)"
+                                         if path.exists() else "no such file"))
     if units is not None:
         units_of(units, f"{path}: ")
     kwargs = {"units": units, "symmetry": symmetry, "force": force, "frame": frame,

@@ -27,7 +27,14 @@ from pathlib import Path
 
 import numpy as np
 
-from ..result import BodyStress, ContactFrame, ContactResult, ResultError, stress_from_voigt
+from ..result import (
+    BodyStress,
+    ContactFrame,
+    ContactResult,
+    ResultError,
+    stress_from_voigt,
+    surface_points,
+)
 from .common import (
     NORMAL_FORCE_NAMES,
     PRESSURE_NAMES,
@@ -45,10 +52,47 @@ from .common import (
 #: the order of its edges (c0 c1, c1 c2, c2 c0).
 TET_FACES = ((0, 1, 2), (0, 1, 3), (1, 2, 3), (0, 2, 3))
 TET10_FACE_MIDS = ((4, 5, 6), (4, 8, 7), (5, 9, 8), (6, 9, 7))
+#: Nodes of each cell type the reader uses.
+NODES_PER_CELL = {"triangle": 3, "triangle6": 6, "tetra": 4, "tetra10": 10}
 
 
-def _field(point_data: dict, names, role: str, given: str | None, src: str):
-    """(name, values) of a point field, or (None, None)."""
+def _mesh_points(mesh, src: str) -> np.ndarray:
+    """The mesh's points (n, 3), checked: 2 or 3 finite coordinates each, and every cell's
+    node indices in 0..n-1 (a negative index would silently wrap to the last points)."""
+    try:
+        points = np.asarray(mesh.points, dtype=float)
+    except (TypeError, ValueError) as exc:
+        raise ResultError(f"{src}: the points are not numbers: {exc}"[:300]) from None
+    if points.ndim != 2 or points.shape[1] not in (2, 3):
+        raise ResultError(f"{src}: the points must have 2 or 3 coordinates each, got an array "
+                          f"of shape {points.shape}")
+    bad = ~np.isfinite(points).all(axis=1)
+    if bad.any():
+        raise ResultError(f"{src}: {int(bad.sum())} point(s) with a non-finite coordinate, "
+                          f"first point {int(np.argmax(bad))}: {points[int(np.argmax(bad))]}")
+    n = len(points)
+    for k, block in enumerate(mesh.cells):
+        data = np.asarray(block.data)
+        if data.size == 0:
+            continue
+        width = NODES_PER_CELL.get(block.type)
+        if data.dtype.kind not in "iu" or data.ndim != 2 or width not in (None, data.shape[1]):
+            raise ResultError(f"{src}: cell block {k} ({block.type}) holds {data.dtype} of "
+                              f"shape {data.shape}, not rows of "
+                              f"{width or 'its cells'} node indices")
+        low, high = int(data.min()), int(data.max())
+        if low < 0 or high >= n:
+            cell = int(np.argmax(((data < 0) | (data >= n)).any(axis=1)))
+            raise ResultError(f"{src}: cell {cell} of block {k} ({block.type}) has node index "
+                              f"{low if low < 0 else high}; the mesh has {n} points "
+                              f"(indices 0..{n - 1})")
+    if points.shape[1] == 2:
+        points = np.column_stack([points, np.zeros(n)])
+    return points
+
+
+def _field(point_data: dict, names, role: str, given: str | None, src: str, n_points: int):
+    """(name, values) of a point field of one value (or row) per point, or (None, None)."""
     lower = {k.lower(): k for k in point_data}
     component = None
     if given is not None:
@@ -67,7 +111,14 @@ def _field(point_data: dict, names, role: str, given: str | None, src: str):
         key = next((lower[n] for n in names if n in lower), None)
         if key is None:
             return None, None
-    values = np.asarray(point_data[key], dtype=float)
+    try:
+        values = np.asarray(point_data[key], dtype=float)
+    except (TypeError, ValueError) as exc:
+        raise ResultError(f"{src}: point field {key!r} ({role}) is not numeric: {exc}"[:300]) \
+            from None
+    if values.ndim == 0 or len(values) != n_points:
+        raise ResultError(f"{src}: point field {key!r} ({role}) has shape {values.shape}; the "
+                          f"mesh has {n_points} points")
     if component is not None:
         if values.ndim != 2 or not 0 <= component < values.shape[1]:
             raise ResultError(f"{src}: field {key!r} has shape {values.shape}, no component "
@@ -178,14 +229,11 @@ def read_mesh(path, *, units: str | None = None, symmetry: str | None = None,
         reason = str(exc) if not isinstance(exc, SystemExit) else "not a valid file"
         raise ResultError(f"{src}: meshio cannot read it: {reason}"[:400]) from None
     length, force_unit, pressure_unit = units_of(units, f"{src}: ")
-    points = np.asarray(mesh.points, dtype=float)
-    if points.shape[1] == 2:
-        points = np.column_stack([points, np.zeros(len(points))])
-    points = points * length
+    points = _mesh_points(mesh, src) * length
     pkey, pressure = _field(mesh.point_data, PRESSURE_NAMES, "contact pressure",
-                            fields.get("pressure"), src)
+                            fields.get("pressure"), src, len(points))
     fkey, normal_force = _field(mesh.point_data, NORMAL_FORCE_NAMES, "nodal contact force",
-                                fields.get("normal_force"), src)
+                                fields.get("normal_force"), src, len(points))
     pressure = _scalar(pkey, pressure, "contact pressure", src)
     normal_force = _scalar(fkey, normal_force, "nodal contact force", src)
     if pressure is None and normal_force is None:
@@ -211,7 +259,7 @@ def read_mesh(path, *, units: str | None = None, symmetry: str | None = None,
     index = np.full(len(points), -1)
     index[nodes] = np.arange(len(nodes))
     triangles = index[faces] if len(faces) else None
-    surface = points[nodes]
+    surface = surface_points(points[nodes], src)  # an area, at a scale Hertz handles
     p_s = None if pressure is None else pressure[nodes] * pressure_unit
     f_s = None if normal_force is None else normal_force[nodes] * force_unit
     w_s = weight[nodes]
@@ -224,14 +272,15 @@ def read_mesh(path, *, units: str | None = None, symmetry: str | None = None,
         symmetry = sym
     if force is None:
         rkey, rf = _field(mesh.point_data, REACTION_NAMES, "reaction", fields.get("reaction"),
-                          src)
+                          src, len(points))
         if rf is not None:
             if rf.ndim != 2 or rf.shape[1] < 3:
                 raise ResultError(f"{src}: reaction field {rkey!r} must have 3 components, "
                                   f"got shape {rf.shape}")
             force = force_from_reaction(rf[:, :3], frame.normal, f"{src}: field {rkey!r}: ")
     stress = []
-    skey, sig = _field(mesh.point_data, STRESS_NAMES, "stress", fields.get("stress"), src)
+    skey, sig = _field(mesh.point_data, STRESS_NAMES, "stress", fields.get("stress"), src,
+                       len(points))
     if sig is not None:
         if sig.ndim != 2 or sig.shape[1] not in (6, 9):
             raise ResultError(f"{src}: stress field {skey!r} must have 6 (xx yy zz xy yz xz) "

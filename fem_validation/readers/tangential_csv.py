@@ -8,14 +8,16 @@ The surface at one state of the path (the snapshot)::
     #                       model's own reaction); default: the scene's load
     # snapshot = 20         path index of this state (default: the first reversal)
     # symmetry = quarter    optional: whole, half, quarter (else detected)
-    # units = mm            optional: SI (default) or mm (mm, N, MPa)
+    # units = mm            optional: SI or mm (mm, N, MPa); default: the columns'
+    #                       units (x [mm], p [MPa]), else SI
     x,y,z,p,qx,qy,stick
     0.0,0.0,0.0,1855.9,310.2,0.0,1
     ...
 
-Columns (a header row, any order, case-insensitive, a trailing "[unit]"
-ignored): ``x``, ``y``, optionally ``z``; the contact pressure ``p`` (or
-``pressure``, ``cpress``); the tangential traction ``qx``, ``qy`` (or
+Columns (a header row, any order, case-insensitive; a unit in a column's name as
+:mod:`fem_validation.readers.table` reads it, which also reads spreadsheets' CSVs):
+``x``, ``y``, optionally ``z``; the contact pressure ``p`` (or ``pressure``,
+``cpress``); the tangential traction ``qx``, ``qy`` (or
 ``shear_x``, ``shear_y``; ``cshear1``, ``cshear2``), optionally ``qz``: the
 traction that body 1 exerts on body 2, in the file's axes (projected on the
 contact plane of the frame); optionally ``stick`` (1 stuck, 0 slipping or open;
@@ -44,9 +46,9 @@ from pathlib import Path
 import numpy as np
 
 from ..result import MULTIPLICITY, ContactFrame, ResultError
-from ..tangential_result import TangentialResult
+from ..tangential_result import TangentialResult, check_path
 from .common import PRESSURE_NAMES, finish, units_of
-from .table import _number, _parse
+from .table import Table, read_table
 
 SHEAR_NAMES = {"x": ("qx", "shear_x", "cshear1", "tx"), "y": ("qy", "shear_y", "cshear2", "ty"),
                "z": ("qz", "shear_z", "tz")}
@@ -54,48 +56,28 @@ DISPLACEMENT_NAMES = ("displacement", "delta", "u", "slip")
 FORCE_NAMES = ("force", "q", "tangential_force")
 
 
-def _columns(header, src, names, role, required=True):
-    index = next((header.index(n) for n in names if n in header), None)
-    if index is None and required:
-        raise ResultError(f"{src}: no {role} column ({', '.join(names)}); columns: "
-                          f"{', '.join(header)}")
-    return index
-
-
-def _table(rows, header, cols, src) -> np.ndarray:
-    """The numbers of the columns ``cols`` {role: index}, checked finite, (k, len(cols))."""
-    out = np.empty((len(rows), len(cols)))
-    for k, (lineno, cells) in enumerate(rows):
-        for c, j in enumerate(cols.values()):
-            out[k, c] = _number(cells[j].strip(), f"{src}, line {lineno}, column "
-                                                  f"{header[j]!r}")
-    for c, (role, j) in enumerate(cols.items()):
-        bad = ~np.isfinite(out[:, c])
-        if bad.any():
-            lineno = rows[int(np.argmax(bad))][0]
-            raise ResultError(f"{src}: column {header[j]!r} ({role}) has {int(bad.sum())} "
-                              f"non-finite value(s), first on line {lineno}")
-    return out
-
-
 def read_history(path, units: str | None = None) -> tuple[np.ndarray, np.ndarray, str]:
     """The path of a frictional result: (displacement [m], force of the model in the file
-    [N], units), from a CSV (see the module docstring).
+    [N], units), from a CSV (see the module docstring), checked as a path
+    (:func:`fem_validation.tangential_result.check_path`).
 
     Raises
     ------
     ResultError
-        Naming the file, the line and the column.
+        Naming this file, the line and the column.
     """
-    path = Path(path)
     src = str(path)
-    meta, header, rows = _parse(path)
-    cols = {"displacement": _columns(header, src, DISPLACEMENT_NAMES, "displacement"),
-            "force": _columns(header, src, FORCE_NAMES, "tangential force")}
-    values = _table(rows, header, cols, src)
-    units = units or (meta["units"][0] if "units" in meta else "SI")
+
+    def choose(t: Table):
+        return {"displacement": t.find(DISPLACEMENT_NAMES, "displacement", "length"),
+                "force": t.find(FORCE_NAMES, "tangential force", "force")}
+
+    t = read_table(path, choose)
+    units = t.resolve_units(units)
     length, force_unit, _ = units_of(units, f"{src}: ")
-    return values[:, 0] * length, values[:, 1] * force_unit, units
+    displacement, force = check_path(t["displacement"] * length, t["force"] * force_unit, src,
+                                     lines=t.lines)
+    return displacement, force, units
 
 
 def read_tangential(surface, history, *, units: str | None = None, symmetry: str | None = None,
@@ -140,51 +122,42 @@ def read_tangential(surface, history, *, units: str | None = None, symmetry: str
         if not p.is_file():
             raise ResultError(f"{p}: no such file")
     src = str(surface)
-    meta, header, rows = _parse(surface)
 
-    def meta_number(key, given, kind=float):
-        if given is not None:
-            return given
-        if key not in meta:
-            return None
-        text, lineno = meta[key]
-        value = _number(text.split()[0] if text else text, f"{src}, line {lineno}, {key}")
-        if kind is int:
-            if value != int(value):
-                raise ResultError(f"{src}, line {lineno}: {key} must be an integer, got {text!r}")
-            return int(value)
-        return value
+    def choose(t: Table):
+        cols = {"x": t.find(("x",), "x", "length"), "y": t.find(("y",), "y", "length"),
+                "pressure": t.find(PRESSURE_NAMES, "contact pressure", "pressure"),
+                "qx": t.find(SHEAR_NAMES["x"], "shear x", "pressure"),
+                "qy": t.find(SHEAR_NAMES["y"], "shear y", "pressure")}
+        for role, names, kind in (("z", ("z",), "length"), ("qz", SHEAR_NAMES["z"], "pressure"),
+                                  ("stick", ("stick",), "number")):
+            col = t.find(names, role, kind, required=False)
+            if col is not None:
+                cols[role] = col
+        return cols
 
+    t = read_table(surface, choose)
     given_units = units
-    units = units or (meta["units"][0] if "units" in meta else "SI")
+    units = t.resolve_units(units)
     length, force_unit, pressure_unit = units_of(units, f"{src}: ")
-    cols = {"x": _columns(header, src, ("x",), "x"), "y": _columns(header, src, ("y",), "y"),
-            "pressure": _columns(header, src, PRESSURE_NAMES, "contact pressure"),
-            "qx": _columns(header, src, SHEAR_NAMES["x"], "shear x"),
-            "qy": _columns(header, src, SHEAR_NAMES["y"], "shear y")}
-    for role, names in (("z", ("z",)), ("qz", SHEAR_NAMES["z"]), ("stick", ("stick",))):
-        j = _columns(header, src, names, role, required=False)
-        if j is not None:
-            cols[role] = j
-    table = dict(zip(cols, _table(rows, header, cols, src).T, strict=True))
-    z = table.get("z", np.zeros(len(rows)))
-    points = np.column_stack([table["x"], table["y"], z]) * length
-    pressure = table["pressure"] * pressure_unit
-    shear3 = np.column_stack([table["qx"], table["qy"], table.get("qz", np.zeros(len(rows)))])
+    n = len(t.lines)
+    z = t["z"] if "z" in t else np.zeros(n)
+    points = np.column_stack([t["x"], t["y"], z]) * length
+    pressure = t["pressure"] * pressure_unit
+    shear3 = np.column_stack([t["qx"], t["qy"], t["qz"] if "qz" in t else np.zeros(n)])
     shear3 = shear3 * pressure_unit
 
-    mu = meta_number("mu", mu)
+    mu = t.meta_number("mu", mu)
     if mu is None:
         raise ResultError(f"{src}: no coefficient of friction: give --mu or a '# mu = ...' line")
-    direction_deg = meta_number("direction_deg", direction_deg)
+    direction_deg = t.meta_number("direction_deg", direction_deg, unit="deg")
     direction_deg = 0.0 if direction_deg is None else direction_deg
     if not math.isfinite(direction_deg):
         raise ResultError(f"{src}: the direction must be a finite angle in degrees, got "
                           f"{direction_deg!r}")
-    snapshot = meta_number("snapshot", snapshot, int)
-    symmetry = symmetry if symmetry is not None else (meta["symmetry"][0] if "symmetry" in meta
-                                                      else None)
-    normal_force = meta_number("normal_force", normal_force)
+    snapshot = t.meta_number("snapshot", snapshot, integer=True)
+    if symmetry is None and "symmetry" in t.meta:
+        symmetry = t.meta["symmetry"][0]
+    normal_force = t.meta_number("normal_force", normal_force, unit="N")
     if normal_force is not None and not (math.isfinite(normal_force) and normal_force > 0):
         raise ResultError(f"{src}: the normal force must be a finite number > 0, got "
                           f"{normal_force!r}")
@@ -201,12 +174,19 @@ def read_tangential(surface, history, *, units: str | None = None, symmetry: str
         raise ResultError(f"{src}: no normal force: give --normal-force N (the model's own), "
                           f"a '# normal_force = ...' line or a scene with a load")
     displacement, force, history_units = read_history(history, given_units)
+    for key, value, ok, allowed in (
+            ("snapshot", snapshot, snapshot is None or 1 <= snapshot < len(force),
+             f"an index 1..{len(force) - 1} into the path of {len(force)} points in {history}"),
+            ("mu", mu, mu > 0, "a number > 0")):
+        if not ok:
+            line = f", line {t.meta[key][1]}" if key in t.meta else ""
+            raise ResultError(f"{src}{line}: {key} = {value!r}: it must be {allowed}")
     shear = np.column_stack([shear3 @ base.frame.x_axis, shear3 @ base.frame.y_axis])
     return TangentialResult(
         points=points, pressure=pressure, shear=shear, normal_force=whole_p, mu=mu,
         direction=math.radians(direction_deg), displacement=displacement,
         force=force * MULTIPLICITY[base.symmetry], snapshot=snapshot, symmetry=base.symmetry,
-        frame=base.frame, stick=(table["stick"] != 0) if "stick" in table else None,
+        frame=base.frame, stick=(t["stick"] != 0) if "stick" in t else None,
         source=src, details={**base.details, "history": str(history),
                              "history_units": history_units,
                              "normal_force_from": ("file" if normal_force is not None
