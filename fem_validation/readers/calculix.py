@@ -20,22 +20,30 @@ What is read, and from where:
 * **symmetry**: detected from the node coordinates (all x >= 0 and y >= 0:
   quarter; one of them: half) unless given;
 * **units**, **approach** and the contact **frame**: from problem.json beside
-  the deck where :mod:`fem_validation.decks` wrote one (the approach is the
-  prescribed one plus the Boussinesq settlement the finite bodies do not show,
-  at the force reached); otherwise ``units`` as given (default mm, N, MPa), no
-  approach, the standard frame (origin 0, normal +z into body 1).
+  the deck where :mod:`fem_validation.decks` wrote one (read and checked by
+  :func:`read_problem`; the approach is the prescribed one plus the Boussinesq
+  settlement the finite bodies do not show, at the force reached); otherwise
+  ``units`` as given (default mm, N, MPa), no approach, the standard frame
+  (origin 0, normal +z into body 1).  Parts of the frame given (``grade
+  --origin``, ``--normal``, ``--x-axis``) replace problem.json's; without
+  problem.json the parts not given are found from the slave nodes' pressure, as
+  the other readers find them (:func:`contact_frame`).
 """
 
 from __future__ import annotations
 
 import json
+import math
 import re
+from dataclasses import dataclass, field
 from pathlib import Path
 
 import numpy as np
 
+from ..limits import read_small_text
 from ..result import BodyStress, ContactFrame, ContactResult, ResultError, stress_from_voigt
-from .frd import FrdFile, read_frd
+from .common import resolve_frame
+from .frd import FrdFile, FrdResult, read_frd
 
 #: Length and stress factors to SI for the unit systems of decks.
 UNIT_FACTORS = {"mm": (1e-3, 1e6), "SI": (1.0, 1.0), "m": (1.0, 1.0)}
@@ -47,18 +55,35 @@ _SPLIT6 = ((0, 3, 5), (3, 1, 4), (5, 4, 2), (3, 4, 5))
 SYMMETRY_TOL = 1e-9
 
 
-def _keyword_blocks(text: str):
-    """(keyword line, data lines) of an .inp, comments dropped, upper-case keywords."""
+#: The longest line of a deck read [characters] (CalculiX reads 132).
+MAX_INP_LINE = 1024
+
+
+def _keyword_blocks(inp_path, keep: tuple[str, ...]):
+    """(keyword line, data lines) of the keywords of an .inp starting with one of ``keep``,
+    comments dropped, upper-case keywords; read line by line, other keywords' data (the
+    nodes and elements) skipped.
+
+    Raises
+    ------
+    ResultError
+        A line longer than :data:`MAX_INP_LINE` (not a deck), naming the file and line.
+    """
     blocks, current = [], None
-    for raw in text.splitlines():
-        line = raw.strip()
-        if not line or line.startswith("**"):
-            continue
-        if line.startswith("*"):
-            current = (line.upper(), [])
-            blocks.append(current)
-        elif current is not None:
-            current[1].append(line)
+    with open(inp_path, "rb") as f:
+        for number, raw in enumerate(iter(lambda: f.readline(MAX_INP_LINE + 1), b""), 1):
+            if len(raw) > MAX_INP_LINE and not raw.endswith(b"\n"):
+                raise ResultError(f"{inp_path}: line {number}: longer than {MAX_INP_LINE} "
+                                  f"characters: not a CalculiX deck")
+            line = raw.decode("utf-8", errors="replace").strip()
+            if not line or line.startswith("**"):
+                continue
+            if line.startswith("*"):
+                current = (line.upper(), []) if line.upper().startswith(keep) else None
+                if current is not None:
+                    blocks.append(current)
+            elif current is not None:
+                current[1].append(line)
     return blocks
 
 
@@ -76,7 +101,10 @@ def slave_surface(inp_path) -> tuple[str, list[tuple[int, int]], list[int]]:
         If the deck has no ``*CONTACT PAIR`` or the slave surface is not defined.
     """
     inp_path = Path(inp_path)
-    blocks = _keyword_blocks(inp_path.read_text(errors="replace"))
+    try:
+        blocks = _keyword_blocks(inp_path, ("*CONTACT PAIR", "*SURFACE,"))
+    except OSError as exc:
+        raise ResultError(f"{inp_path}: cannot read: {exc.strerror or exc}") from None
     pair = next((b for b in blocks if b[0].startswith("*CONTACT PAIR")), None)
     if pair is None or not pair[1]:
         raise ResultError(f"{inp_path}: no *CONTACT PAIR with a data line (slave, master)")
@@ -89,8 +117,8 @@ def slave_surface(inp_path) -> tuple[str, list[tuple[int, int]], list[int]]:
             for line in data:
                 parts = [p.strip() for p in line.split(",") if p.strip()]
                 if kind == "NODE":
-                    nodes += [int(p) for p in parts[:1] if p.isdigit()]
-                elif len(parts) >= 2 and parts[0].isdigit():
+                    nodes += [int(p) for p in parts[:1] if p.isdecimal()]
+                elif len(parts) >= 2 and parts[0].isdecimal():
                     face = parts[1].upper()
                     if not re.fullmatch(r"S[1-4]", face):
                         raise ResultError(f"{inp_path}: surface {name}: face {parts[1]!r} of "
@@ -138,9 +166,300 @@ def _symmetry(xyz: np.ndarray) -> str:
     return "quarter" if x_half and y_half else "half" if x_half or y_half else "whole"
 
 
+class _NotJson:
+    """NaN, Infinity or -Infinity where problem.json holds them (Python's json takes them)."""
+
+    def __init__(self, text: str):
+        self.text = text
+
+
+def _json_type(value) -> str:
+    return {dict: "an object", list: "a list", str: "a string", bool: "true or false",
+            type(None): "null"}.get(type(value), "a number")
+
+
+def _first_not_json(value, key: str = "") -> tuple[str, str] | None:
+    """(key, constant) of the first NaN or Infinity in a parsed problem.json, or None."""
+    if isinstance(value, _NotJson):
+        return key, value.text
+    items = value.items() if isinstance(value, dict) else \
+        enumerate(value) if isinstance(value, list) else ()
+    for k, v in items:
+        found = _first_not_json(v, f"{key}.{k}" if key else str(k))
+        if found:
+            return found
+    return None
+
+
+@dataclass(frozen=True)
+class Problem:
+    """What the CalculiX readers take from a deck's problem.json, checked.
+
+    Attributes
+    ----------
+    path : str
+    units : {"mm", "SI"}
+        The deck's units: mm, N, MPa or m, N, Pa (``units.length``).
+    names : dict
+        ``units`` as the file writes them (``{"length": "mm", "stress": "MPa"}``).
+    frame : dict
+        Those of ``origin`` (in the deck's length unit), ``normal`` and ``x_axis`` that
+        ``frame`` (``origin``, ``normal_into_body1``, ``body1_x_axis``) gives.
+    approach : float or None
+        ``loads.approach``, the prescribed approach [deck's length unit].
+    far_face_depths : tuple of float or None
+        ``model.far_face_depths``: depth of body 1's and body 2's far face [length unit].
+    materials : tuple of (E, nu) or None
+        ``materials.body1`` and ``body2``: E [deck's stress unit], nu.
+    slave : {"CONTACT1", "CONTACT2"} or None
+        ``contact.slave``.
+    details : dict
+        ``geometry``, ``level``, ``penalty_factor``, ``slave``, ``stick_slope``: those given.
+    """
+
+    path: str
+    units: str
+    names: dict
+    frame: dict = field(default_factory=dict)
+    approach: float | None = None
+    far_face_depths: tuple | None = None
+    materials: tuple | None = None
+    slave: str | None = None
+    details: dict = field(default_factory=dict)
+
+    def need_materials(self, why: str) -> tuple:
+        """:attr:`materials`, or a ResultError naming the key and ``why`` it is needed."""
+        if self.materials is None:
+            raise ResultError(f"problem.json {self.path!r}: no key 'materials' (body1 and "
+                              f"body2, each with E and nu), which {why} needs")
+        return self.materials
+
+
+def read_problem(path) -> Problem:
+    """Read and check problem.json of :mod:`fem_validation.decks` (capped at 1 MiB).
+
+    Only ``units.length`` is required; every other key the readers use is checked where
+    given: ``units.stress`` (MPa with mm, Pa with m), ``units.force`` (N), ``frame.origin``,
+    ``frame.normal_into_body1``, ``frame.body1_x_axis`` (3 finite numbers; the axis
+    orthogonal to the normal), ``loads.approach`` (finite), ``model.far_face_depths`` (2
+    positive numbers), ``materials.body1`` / ``body2`` (``E`` > 0, -1 < ``nu`` < 0.5),
+    ``model.geometry`` (text), ``model.level`` (an integer >= 0),
+    ``contact.penalty_factor`` and ``friction.stick_slope`` (positive),
+    ``contact.slave`` (CONTACT1 or CONTACT2).
+
+    Raises
+    ------
+    ResultError
+        One line naming the file and the key (or the line, for text that is not JSON):
+        not JSON, NaN or Infinity anywhere, not an object, a required key missing, a key
+        of the wrong type or out of range.
+    """
+    where = f"problem.json {str(path)!r}"
+    text = read_small_text(path, "problem.json")
+    try:
+        info = json.loads(text, parse_constant=_NotJson)
+    except json.JSONDecodeError as exc:
+        raise ResultError(f"{where}, line {exc.lineno}: not JSON ({exc.msg})") from None
+    except RecursionError:
+        raise ResultError(f"{where}: nested too deeply to be a problem.json") from None
+    if not isinstance(info, dict):
+        raise ResultError(f"{where}: must hold a JSON object ({{...}}), got "
+                          f"{_json_type(info)}")
+    bad = _first_not_json(info)
+    if bad:
+        raise ResultError(f"{where}: key {bad[0]!r} is {bad[1]}, which is not JSON (every "
+                          f"number must be finite)")
+
+    def get(key: str, kind, required: bool = False):
+        node, parts = info, key.split(".")
+        for i, part in enumerate(parts):
+            if not isinstance(node, dict):
+                raise ResultError(f"{where}: key {'.'.join(parts[:i])!r} must be an object, "
+                                  f"got {_json_type(node)}")
+            if part not in node:
+                if required:
+                    raise ResultError(f"{where}: no key {key!r}")
+                return None
+            node = node[part]
+        return kind(node, key)
+
+    def fail(key, value, allowed):
+        raise ResultError(f"{where}: key {key!r} must be {allowed}, got {value!r}")
+
+    def number(value, key, low=-math.inf, allowed="a finite number"):
+        if isinstance(value, bool) or not isinstance(value, int | float) \
+                or not low < value < math.inf:
+            fail(key, value, allowed)
+        return float(value)
+
+    def positive(value, key):
+        return number(value, key, 0.0, "a positive number")
+
+    def vector(value, key):
+        if not (isinstance(value, list) and len(value) == 3):
+            fail(key, value, "a list of 3 finite numbers")
+        out = [number(v, key, allowed="a list of 3 finite numbers") for v in value]
+        return out
+
+    def direction(value, key):
+        out = vector(value, key)
+        if not any(out):
+            fail(key, value, "a nonzero vector")
+        return out
+
+    def text_(value, key):
+        if not isinstance(value, str):
+            fail(key, value, "a string")
+        return value
+
+    def one_of(*allowed):
+        def check(value, key):
+            if value not in allowed:
+                fail(key, value, "one of " + ", ".join(map(repr, allowed)))
+            return value
+        return check
+
+    def level(value, key):
+        if isinstance(value, bool) or not isinstance(value, int) or value < 0:
+            fail(key, value, "an integer 0 or more")
+        return value
+
+    def depths(value, key):
+        if not (isinstance(value, list) and len(value) == 2):
+            fail(key, value, "a list of 2 positive numbers (body 1's, body 2's)")
+        return tuple(positive(v, key) for v in value)
+
+    def material(value, key):
+        if not isinstance(value, dict) or not {"E", "nu"} <= set(value):
+            fail(key, value, "an object with E and nu")
+        nu = number(value["nu"], f"{key}.nu")
+        if not -1.0 < nu < 0.5:
+            fail(f"{key}.nu", value["nu"], "between -1 and 0.5")
+        return positive(value["E"], f"{key}.E"), nu
+
+    length = get("units.length", one_of("mm", "m", "SI"), required=True)
+    units = "mm" if length == "mm" else "SI"
+    names = {"length": length}
+    stress = get("units.stress", one_of("MPa", "Pa"))
+    if stress is not None:
+        want = "MPa" if units == "mm" else "Pa"
+        if stress != want:
+            fail("units.stress", stress, f"{want!r} (the stress unit of a deck in {length})")
+        names["stress"] = stress
+    if get("units.force", one_of("N")) is not None:
+        names["force"] = "N"
+    frame = {}
+    for key, part, kind in (("frame.origin", "origin", vector),
+                            ("frame.normal_into_body1", "normal", direction),
+                            ("frame.body1_x_axis", "x_axis", direction)):
+        value = get(key, kind)
+        if value is not None:
+            frame[part] = value
+    if "normal" in frame and "x_axis" in frame:
+        n, x = np.array(frame["normal"]), np.array(frame["x_axis"])
+        if abs(n @ x) > 1e-6 * np.linalg.norm(n) * np.linalg.norm(x):
+            fail("frame.body1_x_axis", frame["x_axis"], "orthogonal to "
+                 f"frame.normal_into_body1 {frame['normal']}")
+    materials = None
+    if get("materials", lambda v, k: v) is not None:
+        materials = tuple(get(f"materials.{b}", material, required=True)
+                          for b in ("body1", "body2"))
+    details = {}
+    for key, name, kind in (("model.geometry", "geometry", text_),
+                            ("model.level", "level", level),
+                            ("contact.penalty_factor", "penalty_factor", positive),
+                            ("contact.slave", "slave", one_of("CONTACT1", "CONTACT2")),
+                            ("friction.stick_slope", "stick_slope", positive)):
+        value = get(key, kind)
+        if value is not None:
+            details[name] = value
+    return Problem(str(path), units, names, frame, get("loads.approach", number),
+                   get("model.far_face_depths", depths), materials, details.get("slave"),
+                   details)
+
+
+def problem_beside(path, problem) -> Problem | None:
+    """problem.json read: ``problem`` where given, else the one beside ``path`` if any."""
+    if problem is not None:
+        return read_problem(problem)
+    beside = Path(path).parent / "problem.json"
+    return read_problem(beside) if beside.is_file() else None
+
+
+def deck_units(units: str | None, info: Problem | None, source: str) -> str:
+    """The deck's units: problem.json's (``units`` must agree with them), else ``units``,
+    else mm."""
+    if info is not None:
+        if units is not None and UNIT_FACTORS.get(units) != UNIT_FACTORS[info.units]:
+            said = ", ".join(info.names.values())
+            raise ResultError(f"{source}: units {units!r} contradict {info.path}, which "
+                              f"says the deck is in {info.units} ({said}): give units "
+                              f"{info.units!r}")
+        units = info.units
+    units = units or "mm"
+    if units not in UNIT_FACTORS:
+        raise ResultError(f"{source}: units must be one of mm, SI, got {units!r}")
+    return units
+
+
+def contact_frame(frame, info: Problem | None, to_m: float, points, weight,
+                  symmetric: bool, source: str) -> ContactFrame:
+    """The contact frame of a CalculiX result [m].
+
+    ``frame`` where it is a ContactFrame.  Otherwise (None or a dict of some of
+    ``origin`` [m], ``normal``, ``x_axis``, as the other readers take it): the parts
+    given; the rest problem.json's (its x axis only where it is orthogonal to the
+    normal); without problem.json, the standard frame where ``frame`` is None, else the
+    parts not given found from the surface ``points`` [m] and their ``weight``
+    (:func:`fem_validation.readers.common.resolve_frame`).
+    """
+    if isinstance(frame, ContactFrame):
+        return frame
+    if frame is not None and not isinstance(frame, dict):
+        raise ResultError(f"{source}: frame must be a ContactFrame or a dict of origin, "
+                          f"normal, x_axis, got {type(frame).__name__}")
+    parts = {k: v for k, v in (frame or {}).items() if v is not None}
+    unknown = set(parts) - {"origin", "normal", "x_axis"}
+    if unknown:
+        raise ResultError(f"{source}: frame takes origin, normal, x_axis, got "
+                          f"{', '.join(sorted(unknown))}")
+    if info is not None:
+        own = {"origin": np.asarray(info.frame.get("origin", [0.0, 0.0, 0.0])) * to_m,
+               "normal": info.frame.get("normal", [0.0, 0.0, 1.0]),
+               "x_axis": info.frame.get("x_axis", [1.0, 0.0, 0.0])}
+        parts.setdefault("origin", own["origin"])
+        normal = np.asarray(parts.setdefault("normal", own["normal"]), dtype=float)
+        x_axis = np.asarray(own["x_axis"], dtype=float)
+        if "x_axis" not in parts and abs(normal @ x_axis) <= 1e-6 * np.linalg.norm(normal):
+            parts["x_axis"] = x_axis
+    elif frame is None:
+        return ContactFrame(source=source)
+    if len(parts) < 3 and not (np.asarray(weight) > 0).any():
+        raise ResultError(f"{source}: no slave node carries a positive contact pressure, so "
+                          f"the contact frame cannot be found: give origin, normal and x axis")
+    return resolve_frame(parts, points, weight, symmetric, source)
+
+
+def components(result: FrdResult, names, source: str) -> np.ndarray:
+    """The columns ``names`` of a result set, shape (n, len(names)).
+
+    Raises
+    ------
+    ResultError
+        Naming the file, the set and its line where a component is missing.
+    """
+    missing = [c for c in names if c not in result.components]
+    if missing:
+        raise ResultError(f"{source}: line {result.line}: result set {result.name} has no "
+                          f"component {missing[0]!r} (it has "
+                          f"{', '.join(result.components) or 'none'}); the reader needs "
+                          f"{', '.join(names)}")
+    return result.values[:, [result.components.index(c) for c in names]]
+
+
 def read_calculix(path, inp=None, units: str | None = None, symmetry: str | None = None,
                   problem=None, stress: bool = True, tetrahedra: bool = False,
-                  force: float | None = None, frame: ContactFrame | None = None,
+                  force: float | None = None, frame: ContactFrame | dict | None = None,
                   pressure_name: str = "CPRESS") -> ContactResult:
     """Read a CalculiX .frd (ASCII or binary) into a contact result in SI.
 
@@ -155,14 +474,17 @@ def read_calculix(path, inp=None, units: str | None = None, symmetry: str | None
     symmetry : {"whole", "half", "quarter"}, optional
         Default: from the coordinates.
     problem : path-like, optional
-        problem.json of :mod:`fem_validation.decks` (default: beside the .frd).
+        problem.json of :mod:`fem_validation.decks` (default: beside the .frd, if
+        any), read by :func:`read_problem`.
     stress : bool
         Read the nodal stresses of both bodies (the von Mises maxima on the axis).
     force : float, optional
         The total normal force of the model in the file [N]: replaces body 1's
         reaction (times the multiplicity) as the result's force.
-    frame : ContactFrame, optional
-        The contact frame [m]; default problem.json's, else the standard frame.
+    frame : ContactFrame or dict, optional
+        The contact frame [m]; or a dict of some of ``origin`` [m], ``normal``,
+        ``x_axis``, the rest problem.json's, else found from the slave nodes' pressure
+        (:func:`contact_frame`).  Default problem.json's, else the standard frame.
     pressure_name : str
         The contact pressure's component name (default CPRESS).
     tetrahedra : bool
@@ -179,7 +501,8 @@ def read_calculix(path, inp=None, units: str | None = None, symmetry: str | None
     ------
     ResultError
         Naming the file and what is missing or contradictory (no contact
-        pressure, no reaction forces, a deck that does not match, ...).
+        pressure, no reaction forces, a deck that does not match, a malformed .frd
+        or problem.json, ...).
     """
     path = Path(path)
     source = str(path)
@@ -189,20 +512,11 @@ def read_calculix(path, inp=None, units: str | None = None, symmetry: str | None
         raise ResultError(f"{source}: cannot read: {exc.strerror}") from None
     except ValueError as exc:
         raise ResultError(str(exc)) from None
-    problem_path = Path(problem) if problem is not None else path.parent / "problem.json"
-    info = json.loads(problem_path.read_text()) if problem_path.is_file() else None
-    if info:
-        own = {"mm": "mm", "m": "SI"}.get(info["units"]["length"], info["units"]["length"])
-        if units is not None and UNIT_FACTORS.get(units) != UNIT_FACTORS.get(own):
-            raise ResultError(f"{source}: units {units!r} contradict {problem_path}, which "
-                              f"says the deck is in {own} ({info['units']['length']}, "
-                              f"{info['units']['stress']}): give units {own!r}")
-        units = own
-    if units is None:
-        units = "mm"
-    if units not in UNIT_FACTORS:
-        raise ResultError(f"{source}: units must be one of mm, SI, got {units!r}")
+    info = problem_beside(path, problem)
+    units = deck_units(units, info, source)
     to_m, to_pa = UNIT_FACTORS[units]
+    if not len(frd.nodes):
+        raise ResultError(f"{source}: the node block holds no nodes")
     if not any(pressure_name in r.components for r in frd.results):
         raise ResultError(f"{source}: no contact pressure ({pressure_name}) in the file: the "
                           f"deck needs *CONTACT FILE (or *CONTACT OUTPUT) with CSTR; it has "
@@ -252,35 +566,26 @@ def read_calculix(path, inp=None, units: str | None = None, symmetry: str | None
                "nodes": len(frd.nodes), "elements": len(frd.elements),
                "version": next((h.split(None, 1)[1].strip() for h in frd.headers
                                 if h.startswith("VERSION")), "")}
-    given_frame = frame
-    frame = ContactFrame(source=source)
+    frame = contact_frame(frame, info, to_m, points, pressure, sym != "whole", source)
     approach = None
-    if info:
-        fr = info.get("frame", {})
-        frame = ContactFrame(origin=np.asarray(fr.get("origin", [0, 0, 0]), float) * to_m,
-                             normal=fr.get("normal_into_body1", [0, 0, 1]),
-                             x_axis=fr.get("body1_x_axis", [1, 0, 0]), source=source)
+    if info is not None:
         approach = _approach(info, force, to_m, to_pa)
-        details |= {"geometry": info["model"]["geometry"], "level": info["model"]["level"],
-                    "penalty_factor": info["contact"]["penalty_factor"],
-                    "slave": info["contact"]["slave"],
-                    "approach_note": "prescribed approach plus the Boussinesq settlement of "
-                                     "half-spaces at the far faces' depths, at the force"}
-    if given_frame is not None:
-        frame = given_frame
+        details |= {k: v for k, v in info.details.items() if k != "stick_slope"}
+        details["approach_note"] = ("prescribed approach plus the Boussinesq settlement of "
+                                    "half-spaces at the far faces' depths, at the force")
     bodies = []
     if stress and any(r.name == "STRESS" for r in frd.results):
         st = frd.result("STRESS")
-        sig = stress_from_voigt(st.values[:, [st.components.index(c) for c in
-                                              ("SXX", "SYY", "SZZ", "SXY", "SYZ", "SZX")]],
-                                "xx yy zz xy yz xz") * to_pa
+        sig = stress_from_voigt(components(st, ("SXX", "SYY", "SZZ", "SXY", "SYZ", "SZX"),
+                                           source), "xx yy zz xy yz xz") * to_pa
         rows = frd.node_index(st.nodes)
+        tetra = np.isin(frd.element_types, (3, 6))  # corner tetrahedra of tetrahedra only
         for body, (m, nodes) in enumerate(zip(mats, body_nodes, strict=True), start=1):
             keep = np.isin(st.nodes, nodes)
             where = rows[keep]
             local = np.full(len(frd.nodes), -1, dtype=np.int64)
             local[where] = np.arange(keep.sum())
-            conn = frd.connectivity[frd.element_materials == m][:, :4]
+            conn = frd.connectivity[(frd.element_materials == m) & tetra][:, :4]
             tets = local[frd.node_index(conn.ravel())].reshape(-1, 4)
             tets = tets[np.all(tets >= 0, axis=1)]
             bodies.append(BodyStress(body, xyz_all[where], sig[keep],
@@ -290,16 +595,15 @@ def read_calculix(path, inp=None, units: str | None = None, symmetry: str | None
                          stress=tuple(bodies), source=source, details=details)
 
 
-def _approach(info: dict, force: float, to_m: float, to_pa: float) -> float | None:
+def _approach(info: Problem, force: float, to_m: float, to_pa: float) -> float | None:
     """The prescribed approach plus the far faces' Boussinesq settlement at ``force`` [m]."""
     from ..solve import boussinesq_settlement
 
-    loads, model = info.get("loads", {}), info.get("model", {})
-    depths = model.get("far_face_depths")
-    if "approach" not in loads or not depths:
+    if info.approach is None or info.far_face_depths is None:
         return None
-    total = loads["approach"] * to_m
-    for body, depth in zip(("body1", "body2"), depths, strict=True):
-        m = info["materials"][body]
-        total += boussinesq_settlement(force, m["E"] * to_pa, m["nu"], depth * to_m)
+    total = info.approach * to_m
+    materials = info.need_materials("the settlement of the far faces (loads.approach, "
+                                    "model.far_face_depths)")
+    for (E, nu), depth in zip(materials, info.far_face_depths, strict=True):
+        total += boussinesq_settlement(force, E * to_pa, nu, depth * to_m)
     return total

@@ -35,14 +35,24 @@ where:
 
 from __future__ import annotations
 
-import json
 from pathlib import Path
 
 import numpy as np
 
 from ..result import ContactFrame, ResultError
 from ..tangential_result import TangentialResult, path_reversals
-from .calculix import UNIT_FACTORS, _keyword_blocks, _param, _surface, _symmetry, slave_surface
+from .calculix import (
+    UNIT_FACTORS,
+    _keyword_blocks,
+    _param,
+    _surface,
+    _symmetry,
+    components,
+    contact_frame,
+    deck_units,
+    problem_beside,
+    slave_surface,
+)
 from .frd import read_frd
 
 #: The traction body 1 exerts on body 2 is SLAVE_SIGN[slave body] times CalculiX's
@@ -54,11 +64,15 @@ SLAVE_SIGN = {1: 1.0, 2: -1.0}
 def node_set(inp_path, name: str) -> np.ndarray:
     """The node numbers of ``*NSET, NSET=name`` (plain lists of numbers) in a deck."""
     numbers, found = [], False
-    for key, data in _keyword_blocks(Path(inp_path).read_text(errors="replace")):
+    for key, data in _keyword_blocks(inp_path, ("*NSET",)):
         if key.startswith("*NSET") and (_param(key, "NSET") or "").upper() == name.upper():
             found = True
             for line in data:
-                numbers += [int(p) for p in line.split(",") if p.strip()]
+                try:
+                    numbers += [int(p) for p in line.split(",") if p.strip()]
+                except ValueError:
+                    raise ResultError(f"{inp_path}: *NSET, NSET={name}: expected node "
+                                      f"numbers, got {line!r}") from None
     if not found:
         raise ResultError(f"{inp_path}: no node set {name} (*NSET, NSET={name})")
     return np.unique(np.asarray(numbers, dtype=np.int64))
@@ -66,9 +80,16 @@ def node_set(inp_path, name: str) -> np.ndarray:
 
 def friction_coefficient(inp_path) -> float:
     """mu of the deck's first ``*FRICTION`` (its data line: mu, stick slope)."""
-    for key, data in _keyword_blocks(Path(inp_path).read_text(errors="replace")):
+    for key, data in _keyword_blocks(inp_path, ("*FRICTION",)):
         if key.startswith("*FRICTION") and data:
-            return float(data[0].split(",")[0])
+            try:
+                mu = float(data[0].split(",")[0])
+            except ValueError:
+                mu = None
+            if mu is None or not 0 <= mu < np.inf:
+                raise ResultError(f"{inp_path}: *FRICTION: expected mu (a finite number >= 0) "
+                                  f"first on its data line, got {data[0]!r}")
+            return mu
     raise ResultError(f"{inp_path}: no *FRICTION with a data line (mu, stick slope): not a "
                       f"frictional deck; give mu")
 
@@ -95,7 +116,7 @@ def _groups(frd, source):
 def read_calculix_tangential(path, inp=None, problem=None, units: str | None = None,
                              mu: float | None = None, symmetry: str | None = None,
                              snapshot: int | None = None, moved: str = "MOVED",
-                             frame: ContactFrame | None = None) -> TangentialResult:
+                             frame: ContactFrame | dict | None = None) -> TangentialResult:
     """Read a frictional CalculiX run into a :class:`TangentialResult` in SI.
 
     Parameters
@@ -119,7 +140,9 @@ def read_calculix_tangential(path, inp=None, problem=None, units: str | None = N
         Path index of the tractions (default: the first reversal).
     moved : str
         The node set moved along x (body 1's far face).
-    frame : ContactFrame, optional
+    frame : ContactFrame or dict, optional
+        Or a dict of some of ``origin`` [m], ``normal``, ``x_axis``: the rest
+        problem.json's, else found (:func:`fem_validation.readers.calculix.contact_frame`).
         Default problem.json's, else the standard frame.
 
     Returns
@@ -145,17 +168,8 @@ def read_calculix_tangential(path, inp=None, problem=None, units: str | None = N
     if not inp_path.is_file():
         raise ResultError(f"{source}: the deck {inp_path} is needed (the slave surface, the "
                           f"node set {moved}, mu)")
-    problem_path = Path(problem) if problem is not None else path.parent / "problem.json"
-    info = json.loads(problem_path.read_text()) if problem_path.is_file() else None
-    if info:
-        own = {"mm": "mm", "m": "SI"}.get(info["units"]["length"], info["units"]["length"])
-        if units is not None and UNIT_FACTORS.get(units) != UNIT_FACTORS.get(own):
-            raise ResultError(f"{source}: units {units!r} contradict {problem_path}, which "
-                              f"says the deck is in {own}: give units {own!r}")
-        units = own
-    units = units or "mm"
-    if units not in UNIT_FACTORS:
-        raise ResultError(f"{source}: units must be one of mm, SI, got {units!r}")
+    info = problem_beside(path, problem)
+    units = deck_units(units, info, source)
     to_m, to_pa = UNIT_FACTORS[units]
     to_n = 1.0  # both unit systems use newtons
     mu = friction_coefficient(inp_path) if mu is None else mu
@@ -169,10 +183,16 @@ def read_calculix_tangential(path, inp=None, problem=None, units: str | None = N
     d1, fx, fz = [], [], []
     for g in groups:
         disp, forc = g["DISP"], g["FORC"]
-        d1.append(float(disp.component("D1")[np.isin(disp.nodes, moved_nodes)].mean()))
+        for r in (disp, forc):
+            if not np.isin(r.nodes, moved_nodes).any():
+                raise ResultError(f"{source}: line {r.line}: result set {r.name} has no node "
+                                  f"of the node set {moved}")
+        d1.append(float(components(disp, ("D1",), source)[np.isin(disp.nodes, moved_nodes),
+                                                          0].mean()))
         pick = np.isin(forc.nodes, moved_nodes)
-        fx.append(mult * float(forc.component("F1")[pick].sum()))
-        fz.append(-mult * float(forc.component("F3")[pick].sum()))
+        f13 = components(forc, ("F1", "F3"), source)[pick]
+        fx.append(mult * float(f13[:, 0].sum()))
+        fz.append(-mult * float(f13[:, 1].sum()))
     d1, fx, fz = np.array(d1) * to_m, np.array(fx) * to_n, np.array(fz) * to_n
     scale = np.abs(d1).max()
     if not scale > 0:
@@ -187,11 +207,12 @@ def read_calculix_tangential(path, inp=None, problem=None, units: str | None = N
     direction = 0.0 if sense > 0 else np.pi
 
     correction, note = 0.0, "none (no problem.json): the imposed displacement as it is"
-    if info and info.get("model", {}).get("far_face_depths"):
-        depths = [d * to_m for d in info["model"]["far_face_depths"]]
-        mats = [info["materials"][b] for b in ("body1", "body2")]
-        correction = sum(cerruti_settlement(1.0, m["E"] * to_pa, m["nu"], h)
-                         for m, h in zip(mats, depths, strict=True))
+    if info is not None and info.far_face_depths:
+        depths = [d * to_m for d in info.far_face_depths]
+        mats = info.need_materials("the Cerruti settlement of the far faces "
+                                   "(model.far_face_depths)")
+        correction = sum(cerruti_settlement(1.0, E * to_pa, nu, h)
+                         for (E, nu), h in zip(mats, depths, strict=True))
         note = ("imposed displacement of MOVED plus Q (3 - 2 nu)/(8 pi G H) per block "
                 "(Cerruti on the axis at the depth H of its far face)")
     displacement = sense * (d1 + correction * fx)
@@ -212,23 +233,11 @@ def read_calculix_tangential(path, inp=None, problem=None, units: str | None = N
         raise ResultError(f"{source}: slave node {missing[0]} has no contact output: the deck "
                           f"does not match the result")
     rows = [lookup[n] for n in surface.tolist()]
-    pressure = contact.component("CPRESS")[rows] * to_pa
-    slave_body = 1
-    if info:
-        slave_body = 1 if info["contact"]["slave"] == "CONTACT1" else 2
-    shear = SLAVE_SIGN[slave_body] * np.column_stack(
-        [contact.component("CSHEAR1")[rows], contact.component("CSHEAR2")[rows]]) * to_pa
+    tractions = components(contact, ("CPRESS", "CSHEAR1", "CSHEAR2"), source)[rows] * to_pa
+    slave_body = 2 if info is not None and info.slave == "CONTACT2" else 1
+    pressure, shear = tractions[:, 0], SLAVE_SIGN[slave_body] * tractions[:, 1:]
     points = frd.coordinates[frd.node_index(surface)] * to_m
-
-    given_frame = frame
-    frame = ContactFrame(source=source)
-    if info:
-        fr = info.get("frame", {})
-        frame = ContactFrame(origin=np.asarray(fr.get("origin", [0, 0, 0]), float) * to_m,
-                             normal=fr.get("normal_into_body1", [0, 0, 1]),
-                             x_axis=fr.get("body1_x_axis", [1, 0, 0]), source=source)
-    if given_frame is not None:
-        frame = given_frame
+    frame = contact_frame(frame, info, to_m, points, pressure, sym != "whole", source)
     details = {"solver": "CalculiX", "file": source, "units": units, "contact_surface":
                f"slave surface {name} of {inp_path.name}", "nodes": len(frd.nodes),
                "elements": len(frd.elements), "increments": len(d1),
@@ -240,11 +249,9 @@ def read_calculix_tangential(path, inp=None, problem=None, units: str | None = N
                "normal_force_change": float(np.abs(fz / fz[0] - 1).max()),
                "shear_sign": f"shear = {SLAVE_SIGN[slave_body]:+g} x (CSHEAR1, CSHEAR2), "
                              f"slave on body {slave_body}"}
-    if info:
-        details |= {"level": info["model"]["level"],
-                    "penalty_factor": info["contact"]["penalty_factor"],
-                    **({"stick_slope": info["friction"]["stick_slope"]}
-                       if "friction" in info else {})}
+    if info is not None:
+        details |= {k: v for k, v in info.details.items()
+                    if k in ("level", "penalty_factor", "stick_slope")}
     return TangentialResult(points=points, pressure=pressure, shear=shear,
                             normal_force=float(fz[0]), mu=mu, direction=direction,
                             displacement=displacement, force=force, snapshot=int(snap),
