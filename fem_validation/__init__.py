@@ -1,6 +1,7 @@
 """Finite-element validation of hertz: two elastic blocks, penalty contact, scikit-fem.
 
-Run ``python -m fem_validation`` (see ``--help``), or from Python::
+Run ``python -m fem_validation validate`` (``python -m fem_validation --help`` lists every
+mode), or from Python::
 
     import fem_validation as fv
     result = fv.validate(fv.equal_steel(3), level=2, out="fem_out")
@@ -25,44 +26,42 @@ same grade.
 
 from __future__ import annotations
 
+import importlib
+import importlib.util
 import logging
 import time
 from pathlib import Path
+from typing import TYPE_CHECKING
 
-from . import memory
-from .compare import TARGETS, Comparison, check, compare_with_hertz, profiles
-from .curved import (
-    A_OVER_R,
-    CurvedComparison,
-    compare_curved,
-    run_curved,
-    solve_curved,
-    validate_curved,
-)
-from .curved_mesh import DEFAULT_CURVED_LEVEL, CurvedScene, ball_groove, build_curved, sphere_plane
 from .errors import FEMValidationError
-from .friction import FrictionSolution, friction_result, solve_friction
-from .grade import DEFAULT_TOLERANCES, Grade  # the function: fem_validation.grade.grade
-from .grade_tangential import TangentialGrade  # the function: grade_tangential.grade_tangential
-from .mesh import DEFAULT_LEVEL, LEVEL_H0, LEVEL_SCALE, BlockMesh, build, mirrored
-from .output import plot_profiles, write_reports, write_vtu
-from .result import BodyStress, ContactFrame, ContactResult, ResultError
-from .scenes import (
-    Scene,
-    crossed_30deg,
-    default_scenes,
-    equal_steel,
-    scene_from_toml,
-    steel_on_aluminium,
-)
-from .solve import (
-    KAPPA,
-    REBUILD_FRACTION,
-    ContactSolution,
-    solve_contact,
-    transferred_active_set,
-)
-from .tangential_result import TangentialResult
+
+if TYPE_CHECKING:
+    from .compare import Comparison
+    from .scenes import Scene
+
+#: Where each public name lives: imported on first use (PEP 562), so that
+#: ``import fem_validation``, ``python -m fem_validation --help`` and the graders work with
+#: numpy and scipy alone, and only what a name needs (scikit-fem, gmsh, pyamg: the ``fem``
+#: extra) is imported when it is used.
+_LAZY = {
+    "compare": ("TARGETS", "Comparison", "check", "compare_with_hertz", "profiles"),
+    "curved": ("A_OVER_R", "CurvedComparison", "compare_curved", "run_curved",
+               "solve_curved", "validate_curved"),
+    "curved_mesh": ("DEFAULT_CURVED_LEVEL", "CurvedScene", "ball_groove", "build_curved",
+                    "sphere_plane"),
+    "friction": ("FrictionSolution", "friction_result", "solve_friction"),
+    "grade": ("DEFAULT_TOLERANCES", "Grade"),  # the function: fem_validation.grade.grade
+    "grade_tangential": ("TangentialGrade",),  # the function: grade_tangential.grade_tangential
+    "mesh": ("DEFAULT_LEVEL", "LEVEL_H0", "LEVEL_SCALE", "BlockMesh", "build", "mirrored"),
+    "output": ("plot_profiles", "write_reports", "write_vtu"),
+    "result": ("BodyStress", "ContactFrame", "ContactResult", "ResultError"),
+    "scenes": ("Scene", "crossed_30deg", "default_scenes", "equal_steel", "scene_from_toml",
+               "steel_on_aluminium"),
+    "solve": ("KAPPA", "REBUILD_FRACTION", "ContactSolution", "solve_contact",
+              "transferred_active_set"),
+    "tangential_result": ("TangentialResult",),
+}
+_WHERE = {name: module for module, names in _LAZY.items() for name in names}
 
 __all__ = [
     "A_OVER_R",
@@ -113,6 +112,23 @@ __all__ = [
 
 log = logging.getLogger("fem_validation")
 
+
+def __getattr__(name: str):
+    """A public name (or a submodule) imported on first use."""
+    if name in _WHERE:
+        value = getattr(importlib.import_module(f".{_WHERE[name]}", __name__), name)
+    elif not name.startswith("__") and importlib.util.find_spec(f"{__name__}.{name}"):
+        value = importlib.import_module(f".{name}", __name__)  # a submodule, as before
+    else:
+        raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
+    globals()[name] = value
+    return value
+
+
+def __dir__() -> list[str]:
+    return sorted(set(globals()) | set(__all__))
+
+
 #: A nested start solves this many levels coarser first.
 NESTED_LEVELS = 2
 #: The AMG rebuild threshold of a nested start's fine solve: the active set transferred from
@@ -122,8 +138,8 @@ NESTED_LEVELS = 2
 NESTED_REBUILD_FRACTION = 0.01
 
 
-def validate(scene: Scene, level: int = DEFAULT_LEVEL, out: str | Path | None = None,
-             kappa: float = KAPPA, initial_active: str = "hertz",
+def validate(scene: Scene, level: int | None = None, out: str | Path | None = None,
+             kappa: float | None = None, initial_active: str = "hertz",
              rebuild_fraction: float | None = None) -> Comparison:
     """Mesh, solve and compare one scene; with ``out``, also write its VTU files and plot.
 
@@ -131,15 +147,15 @@ def validate(scene: Scene, level: int = DEFAULT_LEVEL, out: str | Path | None = 
     ----------
     scene : Scene
         The bodies, target load and angle (see :mod:`fem_validation.scenes`).
-    level : int
-        Mesh level, 0 (coarse, seconds) to 5 (fine); each level divides every
-        element size by LEVEL_RATIO (sqrt 2); the element size in the contact
-        zone is LEVEL_H0[level] times the Hertz semi-axis b.
+    level : int, optional
+        Mesh level, 0 (coarse, seconds) to 5 (fine), default DEFAULT_LEVEL; each
+        level divides every element size by LEVEL_RATIO (sqrt 2); the element size
+        in the contact zone is LEVEL_H0[level] times the Hertz semi-axis b.
     out : path, optional
         Directory for ``<scene>_body1.vtu``, ``<scene>_body2.vtu`` and
         ``<scene>_pressure.png``.
-    kappa : float
-        Penalty factor (stiffness kappa E*/h0 per unit area).
+    kappa : float, optional
+        Penalty factor (stiffness kappa E*/h0 per unit area), default KAPPA.
     initial_active : {"hertz", "interpenetration", "none", "all", "nested"}
         First active set of the contact iteration (see
         :func:`fem_validation.solve.initial_active_set`); "nested" solves
@@ -156,6 +172,13 @@ def validate(scene: Scene, level: int = DEFAULT_LEVEL, out: str | Path | None = 
     Comparison
         Errors against Hertz at the force the run reached, with timings.
     """
+    from . import memory
+    from .compare import compare_with_hertz, profiles
+    from .mesh import DEFAULT_LEVEL, build
+    from .solve import KAPPA, REBUILD_FRACTION, solve_contact, transferred_active_set
+
+    level = DEFAULT_LEVEL if level is None else level
+    kappa = KAPPA if kappa is None else kappa
     memory.reset_peak()
     t0 = time.perf_counter()
     mesh = build(scene, level)
@@ -180,6 +203,8 @@ def validate(scene: Scene, level: int = DEFAULT_LEVEL, out: str | Path | None = 
              100 * result.edge_b_rel_err, 100 * result.approach_rel_err, result.dofs,
              result.seconds, result.peak_memory_mb)
     if out is not None:
+        from .output import plot_profiles, write_vtu
+
         out = Path(out)
         out.mkdir(parents=True, exist_ok=True)
         write_vtu(scene, mesh, sol, out, nodal_stress=result.nodal_stress)
@@ -189,4 +214,6 @@ def validate(scene: Scene, level: int = DEFAULT_LEVEL, out: str | Path | None = 
 
 def reports(results: list[Comparison], out: str | Path, header: str = ""):
     """Write report.json and report.md for a list of results."""
+    from .output import write_reports
+
     return write_reports(results, Path(out), header)

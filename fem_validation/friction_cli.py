@@ -13,7 +13,9 @@ Cattaneo-Mindlin gives Q = RATIO mu P, unloading to minus that and reloading
 other source goes through.  Writes DIR/<scene>-<axis>/grade.{json,md,png} per
 run and DIR/friction.{json,md} (a study: study.{json,md,png}); with --readme
 also the table of docs/explanation/fem-friction.md and docs/fem/*.png.
-Usage errors exit 2 with one line, before anything runs; a failed grade exits 1.
+Usage errors exit 2 with one line, before anything runs; a failed grade exits 1; an
+internal error exits 3 with one line (``--debug``: its traceback).  A non-empty --out
+is refused unless ``--overwrite``.
 """
 
 from __future__ import annotations
@@ -26,10 +28,18 @@ from pathlib import Path
 
 import numpy as np
 
-from .errors import FEMValidationError
-from .grade_cli import OneLineParser, UsageError
-from .mesh import DEFAULT_LEVEL, LEVEL_H0, LEVEL_RATIO, LEVEL_SCALE
-from .output import prepare_out
+from .cli_common import (
+    FEM_RUN,
+    OneLineParser,
+    UsageError,
+    add_overwrite,
+    choices,
+    fem_constants,
+    guarded,
+    out_dir,
+    require,
+)
+from .limits import read_small_text
 from .scenes import MAX_ALPHA, equal_steel
 
 log = logging.getLogger("fem_validation")
@@ -89,33 +99,57 @@ def run(scene, level: int, mu: float, ratio: float, axis: str, ramp_steps: int, 
     return row
 
 
+#: The largest grade.json, row.json or report --collect reads [bytes] (ours hold a few
+#: hundred kB).
+MAX_COLLECT_BYTES = 64 << 20
+
+
+def _json(path: Path):
+    return json.loads(read_small_text(path, "--collect: file", MAX_COLLECT_BYTES))
+
+
 def row_from_grade(directory: Path) -> dict:
     """A report row from a run's directory: its grade.json (the metrics, the force, the
-    command) and, when the run wrote it, row.json (the solver's counts and time)."""
+    command) and, when the run wrote it, row.json (the solver's counts and time).
+
+    Raises
+    ------
+    ValueError
+        Naming the file: it cannot be read, is larger than MAX_COLLECT_BYTES, is not JSON
+        or not the grade of a frictional run.
+    """
     directory = Path(directory)
+    path = directory / "grade.json"
     try:
-        g = json.loads((directory / "grade.json").read_text())
-    except (OSError, ValueError) as exc:
-        raise ValueError(f"--collect: cannot read {directory / 'grade.json'}: {exc}") from None
-    if g.get("kind") != "tangential":
-        raise ValueError(f"--collect: {directory / 'grade.json'} is not a tangential grade")
+        g = _json(path)
+    except ValueError as exc:
+        raise ValueError(f"--collect: cannot read {path}: {exc}") from None
+    if not isinstance(g, dict) or g.get("kind") != "tangential":
+        raise ValueError(f"--collect: {path} is not a tangential grade")
     axis = directory.name.rsplit("-", 1)[-1]
-    level = int(g["source"].rsplit("level ", 1)[-1])
-    solver = {}
-    if (directory / "row.json").is_file():
-        solver = json.loads((directory / "row.json").read_text())
-    else:  # a run made before rows were kept beside the grade: its report's row
-        for report in (directory.parent / "friction.json", directory.parent.parent / "study.json"):
-            if report.is_file():
-                solver = next((r for r in json.loads(report.read_text())["rows"]
-                               if (r["scene"], r["axis"], r["level"]) == (g["scene"], axis, level)),
-                              {})
-                break
-    return {"scene": g["scene"], "level": level, "axis": axis,
-            "load": g["normal_force"], "ratio": g["fem"]["snapshot_force_ratio"],
-            "metrics": {c["name"]: c["value"] for c in g["checks"]},
-            "passed": g["passed"], "command": g.get("command", ""),
-            **{k: solver.get(k) for k in ("dofs", "iterations", "seconds")}}
+    try:
+        level = int(g["source"].rsplit("level ", 1)[-1])
+        solver = {}
+        if (directory / "row.json").is_file():
+            path = directory / "row.json"
+            solver = _json(path)
+        else:  # a run made before rows were kept beside the grade: its report's row
+            for report in (directory.parent / "friction.json",
+                           directory.parent.parent / "study.json"):
+                if report.is_file():
+                    path = report
+                    solver = next((r for r in _json(report)["rows"]
+                                   if (r["scene"], r["axis"], r["level"])
+                                   == (g["scene"], axis, level)), {})
+                    break
+        return {"scene": g["scene"], "level": level, "axis": axis,
+                "load": g["normal_force"], "ratio": g["fem"]["snapshot_force_ratio"],
+                "metrics": {c["name"]: c["value"] for c in g["checks"]},
+                "passed": g["passed"], "command": g.get("command", ""),
+                **{k: solver.get(k) for k in ("dofs", "iterations", "seconds")}}
+    except (KeyError, TypeError, AttributeError, IndexError, ValueError) as exc:
+        raise ValueError(f"--collect: {path} is not what a friction run writes "
+                         f"({type(exc).__name__}: {exc})"[:300]) from None
 
 
 def _cell(key: str, value) -> str:
@@ -186,9 +220,12 @@ def plot_study(rows: list[dict], path: Path) -> Path:
 
 
 def _parser() -> OneLineParser:
+    c, note = fem_constants({"mesh": ("DEFAULT_LEVEL", "LEVEL_SCALE")})
     p = OneLineParser(prog="python -m fem_validation friction",
                       description="Coulomb friction on the blocks against Cattaneo-Mindlin "
-                                  "and Mindlin-Deresiewicz.")
+                                  "and Mindlin-Deresiewicz." + note,
+                      epilog="example: python -m fem_validation friction --alpha 3 --level 2 "
+                             "--out DIR")
     p.add_argument("--alpha", type=float, nargs="+", metavar="A",
                    help=f"equal steel bodies with curvature ratio A (default "
                         f"{' '.join(f'{a:g}' for a in DEFAULT_ALPHAS)})")
@@ -203,8 +240,8 @@ def _parser() -> OneLineParser:
     p.add_argument("--ramp-steps", type=int, default=DEFAULT_RAMP_STEPS,
                    help=f"steps of the ramp; unloading and reloading take twice as many "
                         f"(default {DEFAULT_RAMP_STEPS})")
-    p.add_argument("--level", type=int, default=None, choices=sorted(LEVEL_SCALE),
-                   help=f"mesh level (default {DEFAULT_LEVEL})")
+    p.add_argument("--level", type=int, default=None, choices=choices(c["LEVEL_SCALE"]),
+                   help=f"mesh level (default {c['DEFAULT_LEVEL']})")
     p.add_argument("--study", metavar="NAME",
                    help="refinement study of one scene (alpha-<A>) at --levels")
     p.add_argument("--levels", type=int, nargs="+", default=None,
@@ -214,6 +251,7 @@ def _parser() -> OneLineParser:
                    help="no run: one table from earlier runs' directories (DIR/<scene>-<axis>, "
                         "each with its grade.json), e.g. to join runs made in parallel")
     p.add_argument("--out", type=Path, default=Path("fem_out"), help="output directory")
+    add_overwrite(p)
     p.add_argument("--readme", action="store_true",
                    help="also put the table into docs/explanation/fem-friction.md and the "
                         "plots into docs/fem/ (run from the repository root)")
@@ -232,6 +270,8 @@ def _scene_of(name: str):
 
 
 def _check(args) -> list[float]:
+    from .mesh import LEVEL_SCALE
+
     if args.study and args.alpha:
         raise UsageError("--study and --alpha cannot be combined")
     if args.study and args.level is not None:
@@ -260,78 +300,76 @@ def _check(args) -> list[float]:
 
 
 def main(argv: list[str]) -> int:
-    """Entry point of ``python -m fem_validation friction``; the exit status."""
-    import sys
+    """Entry point of ``python -m fem_validation friction``: the exit status (0 passed, 1 a
+    check failed, 2 bad input, 3 an internal error; :func:`fem_validation.cli_common.guarded`)."""
+    return guarded("fem_validation friction", _main, list(argv))
 
+
+def _main(argv: list[str]) -> int:
     from .__main__ import publish, readme_section
 
-    try:
-        args = _parser().parse_args(argv)
-        if args.collect:
-            rows = [row_from_grade(d) for d in args.collect]
-            commands = list(dict.fromkeys(r["command"] for r in rows if r["command"]))
-            text = ("Collected from " + "; ".join(f"`{c}`" for c in commands)
-                    + f" (`python -m fem_validation friction {' '.join(argv)}`).\n\n"
-                    + table(rows) + "\n")
-            print(text)
-            if args.readme:
-                publish("fem-friction", text,
-                        [(d / "grade.png", f"{r['scene']}-{r['axis']}_friction.png")
-                         for d, r in zip(args.collect, rows, strict=True)])
-            return 0 if all(r["passed"] for r in rows) else 1
-        alphas = _check(args)
+    args = _parser().parse_args(argv)
+    if args.collect:
+        rows = [row_from_grade(d) for d in args.collect]
+        commands = list(dict.fromkeys(r["command"] for r in rows if r["command"]))
+        text = ("Collected from " + "; ".join(f"`{c}`" for c in commands)
+                + f" (`python -m fem_validation friction {' '.join(argv)}`).\n\n"
+                + table(rows) + "\n")
+        print(text)
         if args.readme:
-            readme_section("fem-friction-study" if args.study else "fem-friction")
-        prepare_out(args.out)
-    except (ValueError, FEMValidationError) as exc:
-        print(f"fem_validation friction: error: {exc}".splitlines()[0], file=sys.stderr)
-        return 2
+            publish("fem-friction", text,
+                    [(d / "grade.png", f"{r['scene']}-{r['axis']}_friction.png")
+                     for d, r in zip(args.collect, rows, strict=True)])
+        return 0 if all(r["passed"] for r in rows) else 1
+    require(FEM_RUN, "friction")
+    from .mesh import DEFAULT_LEVEL, LEVEL_H0, LEVEL_RATIO
+
+    alphas = _check(args)
+    if args.readme:
+        readme_section("fem-friction-study" if args.study else "fem-friction")
+    out_dir(args.out, args.overwrite)
     logging.basicConfig(level=logging.WARNING if args.quiet else logging.INFO,
                         format="%(asctime)s %(message)s", datefmt="%H:%M:%S")
     command = " ".join(["python -m fem_validation friction", *argv])
     t0 = time.perf_counter()
-    try:
-        if args.study:
-            scene = equal_steel(alphas[0])
-            rows = [run(scene, level, args.mu, args.ratio, args.axis[0], args.ramp_steps,
-                        args.out / f"level-{level}", command) for level in args.levels]
-            rates = study_rates(rows)
-            text = (f"Refinement study of {scene.name}, load along the {args.axis[0]} axis, "
-                    f"mu = {args.mu:g}, Q*/(mu P) = {args.ratio:g}, levels {args.levels} "
-                    f"(every element size divided by {LEVEL_RATIO:.3g} per level); "
-                    f"observed rates (slope of log|error| against log h): "
-                    + ", ".join(f"{dict(COLUMNS)[k]} {v:.2f}" for k, v in rates.items())
-                    + f"; {time.perf_counter() - t0:.0f} s on {cpu_count()} cores; "
-                    f"`{command}`.\n\n" + table(rows) + "\n")
-            (args.out / "study.json").write_text(json.dumps(
-                {"rows": rows, "rates": rates, "command": command}, indent=1, default=float))
-            (args.out / "study.md").write_text(text + "\n" + LEGEND + "\n")
-            plot_study(rows, args.out / "study.png")
-            print(text)
-            if args.readme:
-                publish("fem-friction-study", text,
-                        [(args.out / "study.png", f"{scene.name}_friction_study.png")])
-            return 0
-        level = DEFAULT_LEVEL if args.level is None else args.level
-        rows = [run(equal_steel(a), level, args.mu, args.ratio, axis, args.ramp_steps,
-                    args.out, command) for a in alphas for axis in args.axis]
-        text = (f"Level {level} (grid spacing {LEVEL_H0[level]:.3g} b at the contact), "
-                f"mu = {args.mu:g}, Q*/(mu P) = {args.ratio:g}, {args.ramp_steps} ramp steps; "
-                f"{time.perf_counter() - t0:.0f} s in all on {cpu_count()} cores; "
+    if args.study:
+        scene = equal_steel(alphas[0])
+        rows = [run(scene, level, args.mu, args.ratio, args.axis[0], args.ramp_steps,
+                    args.out / f"level-{level}", command) for level in args.levels]
+        rates = study_rates(rows)
+        text = (f"Refinement study of {scene.name}, load along the {args.axis[0]} axis, "
+                f"mu = {args.mu:g}, Q*/(mu P) = {args.ratio:g}, levels {args.levels} "
+                f"(every element size divided by {LEVEL_RATIO:.3g} per level); "
+                f"observed rates (slope of log|error| against log h): "
+                + ", ".join(f"{dict(COLUMNS)[k]} {v:.2f}" for k, v in rates.items())
+                + f"; {time.perf_counter() - t0:.0f} s on {cpu_count()} cores; "
                 f"`{command}`.\n\n" + table(rows) + "\n")
-        (args.out / "friction.json").write_text(json.dumps(
-            {"rows": rows, "command": command}, indent=1, default=float))
-        (args.out / "friction.md").write_text(text + "\n" + LEGEND + "\n")
+        (args.out / "study.json").write_text(json.dumps(
+            {"rows": rows, "rates": rates, "command": command}, indent=1, default=float))
+        (args.out / "study.md").write_text(text + "\n" + LEGEND + "\n")
+        plot_study(rows, args.out / "study.png")
         print(text)
         if args.readme:
-            publish("fem-friction", text,
-                    [(args.out / f"{r['scene']}-{r['axis']}" / "grade.png",
-                      f"{r['scene']}-{r['axis']}_friction.png") for r in rows])
-        failed = [f"{r['scene']} ({', '.join(r['failed'])})" for r in rows if not r["passed"]]
-        if failed:
-            log.warning("failed: %s", "; ".join(failed))
-            return 1
-    except (FEMValidationError, ValueError, OSError) as exc:
-        print(f"fem_validation friction: error: {exc}".splitlines()[0], file=sys.stderr)
-        return 2
+            publish("fem-friction-study", text,
+                    [(args.out / "study.png", f"{scene.name}_friction_study.png")])
+        return 0
+    level = DEFAULT_LEVEL if args.level is None else args.level
+    rows = [run(equal_steel(a), level, args.mu, args.ratio, axis, args.ramp_steps,
+                args.out, command) for a in alphas for axis in args.axis]
+    text = (f"Level {level} (grid spacing {LEVEL_H0[level]:.3g} b at the contact), "
+            f"mu = {args.mu:g}, Q*/(mu P) = {args.ratio:g}, {args.ramp_steps} ramp steps; "
+            f"{time.perf_counter() - t0:.0f} s in all on {cpu_count()} cores; "
+            f"`{command}`.\n\n" + table(rows) + "\n")
+    (args.out / "friction.json").write_text(json.dumps(
+        {"rows": rows, "command": command}, indent=1, default=float))
+    (args.out / "friction.md").write_text(text + "\n" + LEGEND + "\n")
+    print(text)
+    if args.readme:
+        publish("fem-friction", text,
+                [(args.out / f"{r['scene']}-{r['axis']}" / "grade.png",
+                  f"{r['scene']}-{r['axis']}_friction.png") for r in rows])
+    failed = [f"{r['scene']} ({', '.join(r['failed'])})" for r in rows if not r["passed"]]
+    if failed:
+        log.warning("failed: %s", "; ".join(failed))
+        return 1
     return 0

@@ -13,75 +13,54 @@ result against Cattaneo-Mindlin and Mindlin-Deresiewicz,
 :mod:`fem_validation.grade_tangential`; a CalculiX .frd of a ``deck --friction`` run
 is read by :mod:`fem_validation.readers.calculix_friction`, path and all).  Exit status 0 when every
 check passes, 1 when one fails, 2 for bad input (one line on stderr naming the
-file and the field), so that other projects can run it in their CI.
+file and the field), 3 for an internal error (a defect: one line, ``--debug`` for the
+traceback), so that other projects can run it in their CI.  A re-run replaces an
+earlier grade in DIR; a DIR holding other files needs ``--overwrite``.
 """
 
 from __future__ import annotations
 
-import argparse
 import math
 import sys
 import tomllib
 from pathlib import Path
 
+from .cli_common import (
+    OneLineParser,
+    UsageError,
+    add_overwrite,
+    finite,
+    guarded,
+    index,
+    out_dir,
+    positive,
+    require,
+    small_input,
+    vector,
+)
 from .grade import CURVE_METRICS, CURVE_TOLERANCES, DEFAULT_TOLERANCES, METRICS
+from .limits import read_small_text
 
+__all__ = ["OneLineParser", "UsageError", "main", "parser", "run", "tolerances_from"]
 
-class UsageError(ValueError):
-    """A command line that cannot be run (one line, exit status 2)."""
-
-
-class OneLineParser(argparse.ArgumentParser):
-    """argparse with its errors as one-line UsageErrors instead of usage + exit."""
-
-    def error(self, message):
-        raise UsageError(f"{self.prog}: {message}")
-
-
-def _vector(text: str) -> list[float]:
-    try:
-        v = [float(x) for x in text.replace(",", " ").split()]
-    except ValueError:
-        raise argparse.ArgumentTypeError(f"not three numbers: {text!r}") from None
-    if len(v) != 3 or not all(math.isfinite(x) for x in v):
-        raise argparse.ArgumentTypeError(f"not three finite numbers: {text!r}")
-    return v
-
-
-def _positive(text: str) -> float:
-    try:
-        x = float(text)
-    except ValueError:
-        raise argparse.ArgumentTypeError(f"not a number: {text!r}") from None
-    if not (math.isfinite(x) and x > 0):
-        raise argparse.ArgumentTypeError(f"must be a finite number > 0, got {text!r}")
-    return x
-
-
-def _finite(text: str) -> float:
-    try:
-        x = float(text)
-    except ValueError:
-        raise argparse.ArgumentTypeError(f"not a number: {text!r}") from None
-    if not math.isfinite(x):
-        raise argparse.ArgumentTypeError(f"must be a finite number, got {text!r}")
-    return x
-
-
-def _index(text: str) -> int:
-    try:
-        k = int(text)
-    except ValueError:
-        raise argparse.ArgumentTypeError(f"not an integer: {text!r}") from None
-    if k < 1:
-        raise argparse.ArgumentTypeError(f"must be a path index >= 1, got {text!r}")
-    return k
+#: The files a grade writes: an earlier grade's are replaced without --overwrite.
+GRADE_FILES = ("grade.json", "grade.md", "grade.png")
 
 
 def parser() -> OneLineParser:
     p = OneLineParser(prog="python -m fem_validation grade",
                       description="Grade a contact result of any finite-element code (or a "
-                                  "DEM force-approach curve) against Hertz.")
+                                  "DEM force-approach curve) against Hertz.",
+                      epilog="examples:\n"
+                             "  python -m fem_validation grade RUN/hertz.frd --scene FILE.toml "
+                             "--units mm --out DIR\n"
+                             "  python -m fem_validation grade --force-approach CURVE.csv "
+                             "--scene FILE.toml --out DIR\n"
+                             "  python -m fem_validation grade --tangential SURFACE.csv "
+                             "--history PATH.csv --mu 0.3 --scene FILE.toml --out DIR\n\n"
+                             "exit status: 0 every check passed, 1 one failed, 2 bad input "
+                             "(one line), 3 internal error (one line; --debug for the "
+                             "traceback)")
     p.add_argument("result", nargs="?", type=Path,
                    help="result file: .csv (x, y, p), .frd (CalculiX), or any meshio format "
                         "(.vtu, .xdmf, .exo, .med, ...)")
@@ -100,16 +79,16 @@ def parser() -> OneLineParser:
     t.add_argument("--history", type=Path, metavar="PATH.csv",
                    help="the tangential path (columns displacement, force), from the "
                         "unloaded state: ramp, unloading, reloading")
-    t.add_argument("--mu", type=_positive, help="coefficient of friction (default: the "
+    t.add_argument("--mu", type=positive, help="coefficient of friction (default: the "
                                                 "surface file's '# mu' line)")
-    t.add_argument("--direction-deg", type=_finite, metavar="DEG",
+    t.add_argument("--direction-deg", type=finite, metavar="DEG",
                    help="the load's angle from body 1's x axis [deg] (default: the file's "
                         "'# direction_deg' line, else 0)")
-    t.add_argument("--normal-force", type=_positive, metavar="N",
+    t.add_argument("--normal-force", type=positive, metavar="N",
                    help="normal force of the model in the file (a quarter model's own), in "
                         "the file's force unit (default: the file's '# normal_force' line, "
                         "else the scene's load, whole contact)")
-    t.add_argument("--snapshot", type=_index, metavar="INDEX",
+    t.add_argument("--snapshot", type=index, metavar="INDEX",
                    help="path index of the surface's state (default: the file's '# "
                         "snapshot' line, else the first reversal)")
     p.add_argument("--units", choices=("SI", "m", "mm"),
@@ -117,18 +96,18 @@ def parser() -> OneLineParser:
                         "the CSV's '# units' line")
     p.add_argument("--symmetry", choices=("whole", "half", "quarter"),
                    help="the model in the file (default: detected)")
-    p.add_argument("--force", type=_positive, metavar="N",
+    p.add_argument("--force", type=positive, metavar="N",
                    help="total normal force of the model in the file (a quarter model's own "
                         "reaction), in the file's force unit; default from the file")
     for role in ("pressure", "normal-force", "reaction", "stress"):
         p.add_argument(f"--{role}-field", metavar="NAME[:COMPONENT]",
                        help=f"name of the {role.replace('-', ' ')} field (default: recognised)")
-    p.add_argument("--origin", type=_vector, metavar="X,Y,Z",
+    p.add_argument("--origin", type=vector, metavar="X,Y,Z",
                    help="contact point in the file's coordinates, in --units (default: found; "
                         "what is not given of origin, normal, x axis is found)")
-    p.add_argument("--normal", type=_vector, metavar="X,Y,Z",
+    p.add_argument("--normal", type=vector, metavar="X,Y,Z",
                    help="contact normal pointing into body 1 (default: found, along +z)")
-    p.add_argument("--x-axis", type=_vector, metavar="X,Y,Z",
+    p.add_argument("--x-axis", type=vector, metavar="X,Y,Z",
                    help="body 1's x axis in the contact plane (default: the file's x axis)")
     p.add_argument("--semi-axes", choices=("auto", "moments", "fit"), default="auto",
                    help="a, b from the moments of the nodal forces or from the p^2 fit "
@@ -138,6 +117,7 @@ def parser() -> OneLineParser:
     p.add_argument("--tolerances", type=Path, metavar="FILE.toml",
                    help="tolerances from a TOML file (NAME = VALUE lines)")
     p.add_argument("--out", type=Path, default=Path("grade_out"), help="output directory")
+    add_overwrite(p, "an earlier grade's grade.json, .md and .png are replaced without it")
     return p
 
 
@@ -145,15 +125,15 @@ def tolerances_from(args, defaults: dict, metrics: dict) -> dict:
     """The defaults, then the TOML file, then --tolerance NAME=VALUE."""
     tol = dict(defaults)
     if args.tolerances is not None:
+        text = read_small_text(args.tolerances, "tolerances file")
         try:
-            with open(args.tolerances, "rb") as f:
-                table = tomllib.load(f)
-        except OSError as exc:
-            raise UsageError(f"cannot read tolerances file {str(args.tolerances)!r}: "
-                             f"{exc.strerror}") from None
-        except (tomllib.TOMLDecodeError, UnicodeDecodeError) as exc:
+            table = tomllib.loads(text)
+        except tomllib.TOMLDecodeError as exc:
             raise UsageError(f"tolerances file {str(args.tolerances)!r} is not valid TOML: "
                              f"{exc}") from None
+        except RecursionError:
+            raise UsageError(f"tolerances file {str(args.tolerances)!r} is nested too deeply "
+                             "to read") from None
         for name, value in table.items():
             if isinstance(value, bool) or not isinstance(value, int | float):
                 raise UsageError(f"tolerances file {str(args.tolerances)!r}: {name} must be "
@@ -178,6 +158,7 @@ def tolerances_from(args, defaults: dict, metrics: dict) -> dict:
 
 def run(argv: list[str]) -> int:
     """Parse, grade, write; return the exit status (errors are raised as ValueError)."""
+    args = parser().parse_args(argv)
     from . import output
     from .grade import grade, grade_force_approach
     from .readers.common import read_result, units_of
@@ -185,7 +166,6 @@ def run(argv: list[str]) -> int:
     from .result import ContactFrame
     from .scenes import scene_from_toml
 
-    args = parser().parse_args(argv)
     command = " ".join(["python -m fem_validation grade", *argv])
     inputs = [x for x in (args.result, args.force_approach, args.tangential) if x is not None]
     if len(inputs) != 1:
@@ -222,7 +202,10 @@ def run(argv: list[str]) -> int:
         if given:
             raise UsageError(f"python -m fem_validation grade: {', '.join(given)} only apply "
                              f"to --tangential SURFACE.csv")
-    out = output.prepare_out(args.out)
+    if args.force_approach is not None:
+        small_input(args.force_approach, "--force-approach")
+    require(["matplotlib"], "grade (its grade.png)")
+    out = out_dir(args.out, args.overwrite, GRADE_FILES)
     scene = scene_from_toml(args.scene)
     if args.tangential is not None:
         # not "from . import grade_tangential": the package exports the function of that name
@@ -283,9 +266,7 @@ def run(argv: list[str]) -> int:
 
 
 def main(argv=None) -> int:
+    """Entry point of ``python -m fem_validation grade``: the exit status (0 passed, 1 a
+    check failed, 2 bad input, 3 an internal error; :func:`fem_validation.cli_common.guarded`)."""
     argv = sys.argv[1:] if argv is None else list(argv)
-    try:
-        return run(argv)
-    except (ValueError, OSError) as exc:
-        print(f"fem_validation grade: error: {exc}".splitlines()[0], file=sys.stderr)
-        return 2
+    return guarded("fem_validation grade", run, argv)

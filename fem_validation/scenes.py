@@ -109,6 +109,9 @@ def default_scenes() -> list[Scene]:
 NAMED = {"steel-aluminium": steel_on_aluminium, "crossed-30deg": crossed_30deg}
 
 
+#: The longest scene name a scene file may give [characters].
+MAX_NAME = 100
+
 _SCENE_KEYS = ("name", "load", "approach", "angle_deg", "body1", "body2")
 _BODY_KEYS = ("Rx", "Ry", "E", "nu")
 
@@ -120,15 +123,18 @@ def scene_from_toml(path) -> Scene:
     (negative concave, "inf" flat), E [Pa] and nu; ``load`` [N] or ``approach``
     [m] (at most one: the target; a graded result brings its own force, so
     neither is needed there: the target load is then NaN), ``angle_deg`` and
-    ``name`` (default: the file's stem) are optional.  Unlike the ``hertz``
+    ``name`` (default: the file's stem; one line of at most :data:`MAX_NAME`
+    printable characters) are optional.  The file is read through
+    :func:`fem_validation.limits.read_small_text` (at most 1 MiB).  Unlike the ``hertz``
     command, nothing is filled in from its default scene: a grade against a body
     the file does not describe would be a wrong number.
 
     Raises
     ------
     ValueError
-        Naming the file and the key: unreadable file, invalid TOML, a missing or
-        unknown key, a value that is not a number, bodies without a Hertz contact.
+        Naming the file and the key: unreadable file, a file over 1 MiB, invalid
+        TOML, a missing or unknown key, a value that is not a number, a name that is
+        not one printable line, bodies without a Hertz contact.
 
     Examples
     --------
@@ -143,14 +149,20 @@ def scene_from_toml(path) -> Scene:
     import tomllib
     from pathlib import Path
 
+    from .limits import read_small_text
+
     path = Path(path)
     where = f"scene file {str(path)!r}"
     try:
-        with open(path, "rb") as f:
-            data = tomllib.load(f)
-    except OSError as exc:
-        raise ValueError(f"cannot read {where}: {exc.strerror}") from None
-    except (tomllib.TOMLDecodeError, UnicodeDecodeError) as exc:
+        text = read_small_text(path, "scene file")
+    except ValueError as exc:
+        if isinstance(exc.__context__, OSError):  # the project's wording for these
+            raise ValueError(f"cannot read {where}: "
+                             f"{exc.__context__.strerror or exc.__context__}") from None
+        raise
+    try:
+        data = tomllib.loads(text)
+    except tomllib.TOMLDecodeError as exc:
         raise ValueError(f"{where} is not valid TOML: {exc}") from None
     except RecursionError:
         raise ValueError(f"{where} is nested too deeply to read") from None
@@ -202,4 +214,9 @@ def scene_from_toml(path) -> Scene:
     name = data.get("name", path.stem)
     if not isinstance(name, str):
         raise ValueError(f"{where}: name must be a string, got {type(name).__name__}")
+    if not name.strip() or len(name) > MAX_NAME or not name.isprintable():
+        # the name goes into file names, reports and the heading line of a deck: a line
+        # break there would start a keyword line of its own
+        raise ValueError(f"{where}: name must be one line of at most {MAX_NAME} printable "
+                         f"characters, got {name[:MAX_NAME]!r}")
     return Scene(name, bodies[0], bodies[1], load, angle)

@@ -5,7 +5,9 @@ writes DIR/hertz.inp (CalculiX), ``--format abaqus`` DIR/hertz.inp in
 Abaqus's dialect, ``--format msh|med|exodus|xdmf`` DIR/mesh.* with named
 groups; every format also writes DIR/problem.json (materials, loads, units,
 groups, the contact pair and penalty, the Hertz values expected).  The scene
-is a ``hertz`` TOML scene file (SI; see :mod:`hertz.cli`).
+is a ``hertz`` TOML scene file (SI; see :mod:`hertz.cli`).  DIR must be new or
+empty (``--overwrite`` writes into a folder that holds files: a new deck beside
+an earlier run's results would be graded against the wrong problem.json).
 
 The model (:mod:`fem_validation.decks.model`): a true ball on a plane or in a
 groove where the scene is one (quarter model), paraboloid-faced blocks
@@ -33,6 +35,7 @@ import argparse
 import math
 from pathlib import Path
 
+from ..cli_common import add_overwrite, finite, out_dir, positive, require
 from ..scenes import Scene, scene_from_toml
 from .inp import DEFAULT_FRICTION_INCREMENTS, UNITS, friction_path, write_inp
 from .meshes import write_mesh, write_problem
@@ -57,12 +60,15 @@ def read_scene(path) -> Scene:
     Raises
     ------
     ValueError
-        Naming the file and the key (see scene_from_toml), or the missing target.
+        Naming the file and the key (see scene_from_toml), or the missing or zero target.
     """
     scene = scene_from_toml(path)
     if not math.isfinite(scene.load):
         raise ValueError(f"scene file {str(path)!r}: a deck needs the target: give load [N] "
                          f"or approach [m]")
+    if not scene.load > 0:
+        raise ValueError(f"scene file {str(path)!r}: load must be > 0 for a deck (the "
+                         f"approach that reaches it is prescribed), got {scene.load!r}")
     return scene
 
 
@@ -140,7 +146,10 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
                         help="hertz TOML scene file (SI)")
     parser.add_argument("--format", required=True, choices=FORMATS, dest="deck_format",
                         help="calculix or abaqus (.inp), or a mesh with named groups")
-    parser.add_argument("--out", type=Path, required=True, help="output directory")
+    parser.add_argument("--out", type=Path, required=True,
+                        help="output directory (new or empty: a deck beside another run's "
+                             "files would be graded against the wrong problem.json)")
+    add_overwrite(parser)
     parser.add_argument("--units", choices=sorted(UNITS), default="mm",
                         help="units of the files (default mm: mm, N, MPa)")
     parser.add_argument("--level", type=int, default=DEFAULT_DECK_LEVEL,
@@ -151,7 +160,7 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
                              "the scene allows; half with --friction)")
     parser.add_argument("--slave", type=int, choices=(1, 2), default=1,
                         help="body whose contact face is the slave surface (default 1)")
-    parser.add_argument("--penalty-factor", type=float, default=PENALTY_FACTOR,
+    parser.add_argument("--penalty-factor", type=positive, default=PENALTY_FACTOR,
                         help=f"penalty slope over E*/h0 (default {PENALTY_FACTOR:g})")
     f = parser.add_argument_group(
         "Coulomb friction (--format calculix)",
@@ -160,9 +169,9 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
         "minus that and forward again, with output at every increment; half model (y >= 0) "
         "of paraboloid-faced blocks; stick slope = the normal penalty slope. Grade the run "
         "with: python -m fem_validation grade --tangential DIR/hertz.frd --scene FILE")
-    f.add_argument("--friction", type=float, metavar="MU",
+    f.add_argument("--friction", type=finite, metavar="MU",
                    help="coefficient of friction: write a frictional deck")
-    f.add_argument("--friction-ratio", type=float, default=0.8, metavar="RATIO",
+    f.add_argument("--friction-ratio", type=finite, default=0.8, metavar="RATIO",
                    help="Q*/(mu P) at the end of the ramp, in (0, 1) (default 0.8)")
     f.add_argument("--friction-increments", type=int, default=DEFAULT_FRICTION_INCREMENTS,
                    metavar="N", help="increments of the ramp; unloading takes 2N, reloading "
@@ -171,11 +180,20 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
 
 
 def run(args: argparse.Namespace, command: str | None = None) -> int:
-    """Run the ``deck`` subcommand; ValueError / FEMValidationError propagate to the caller."""
+    """Run the ``deck`` subcommand; ValueError / FEMValidationError propagate to the caller.
+
+    The scene is read (at most 1 MiB, :func:`fem_validation.limits.read_small_text`), the
+    packages a deck needs are looked up and ``--out`` is checked (new or empty, unless
+    ``--overwrite``) before anything is meshed.
+    """
     scene = read_scene(args.scene)
     if args.friction is None and (args.friction_ratio != 0.8 or
                                   args.friction_increments != DEFAULT_FRICTION_INCREMENTS):
         raise ValueError("--friction-ratio and --friction-increments need --friction MU")
+    require(("gmsh", "skfem", "pyamg", *(() if args.deck_format in ("calculix", "abaqus")
+                                         else ("meshio",))),
+            f"deck --format {args.deck_format}")
+    out_dir(args.out, args.overwrite)
     m, paths = write_deck(scene, args.deck_format, args.out, args.units, args.level,
                           args.model, args.slave, args.penalty_factor, command,
                           args.friction, args.friction_ratio, args.friction_increments)
