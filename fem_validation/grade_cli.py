@@ -161,9 +161,8 @@ def run(argv: list[str]) -> int:
     args = parser().parse_args(argv)
     from . import output
     from .grade import grade, grade_force_approach
-    from .readers.common import read_result, units_of
+    from .readers.common import read_result
     from .readers.table import read_force_approach
-    from .result import ContactFrame
     from .scenes import scene_from_toml
 
     command = " ".join(["python -m fem_validation grade", *argv])
@@ -215,30 +214,23 @@ def run(argv: list[str]) -> int:
         from .readers.tangential_csv import read_tangential
 
         tol = tolerances_from(args, gt.DEFAULT_TOLERANCES, gt.METRICS)
-        length = units_of(args.units or "SI")[0]
-        frame = {k: v for k, v in (("origin", args.origin and [length * x for x in args.origin]),
-                                   ("normal", args.normal), ("x_axis", args.x_axis)) if v}
-        if len(frame) == 3:
-            frame = ContactFrame(**frame, source=str(args.tangential))
         if frd:
             from .readers.calculix_friction import read_calculix_tangential
 
-            result = read_calculix_tangential(args.tangential, units=args.units,
-                                              mu=args.mu, symmetry=args.symmetry,
-                                              snapshot=args.snapshot,
-                                              frame=frame if isinstance(frame, ContactFrame)
-                                              else None)
+            def read(frame):
+                return read_calculix_tangential(args.tangential, units=args.units, mu=args.mu,
+                                                symmetry=args.symmetry,
+                                                snapshot=args.snapshot, frame=frame)
         else:
-            result = read_tangential(args.tangential, args.history, units=args.units,
-                                     symmetry=args.symmetry, normal_force=args.normal_force,
-                                     mu=args.mu, direction_deg=args.direction_deg,
-                                     snapshot=args.snapshot, frame=frame,
-                                     default_normal_force=scene.load)
-        g = gt.grade_tangential(result, scene, tol)
+            def read(frame):
+                return read_tangential(args.tangential, args.history, units=args.units,
+                                       symmetry=args.symmetry, normal_force=args.normal_force,
+                                       mu=args.mu, direction_deg=args.direction_deg,
+                                       snapshot=args.snapshot, frame=frame,
+                                       default_normal_force=scene.load)
+        g = gt.grade_tangential(_read_framed(read, args, args.tangential), scene, tol)
         json_path, md_path, png_path = gt.write_grade(g, out, command)
-        verdict = "PASSED" if g.passed else "FAILED: " + ", ".join(
-            c.name for c in g.checks if c.status == "fail")
-        print(f"{verdict}; wrote {json_path}, {md_path}, {png_path}")
+        print(f"{g.summary}; wrote {json_path}, {md_path}, {png_path}")
         return 0 if g.passed else 1
     if args.force_approach is not None:
         tol = tolerances_from(args, CURVE_TOLERANCES, CURVE_METRICS)
@@ -246,23 +238,39 @@ def run(argv: list[str]) -> int:
         g = grade_force_approach(approach, force, scene, tol, source=str(args.force_approach))
     else:
         tol = tolerances_from(args, DEFAULT_TOLERANCES, METRICS)
-        length = units_of(args.units or "SI")[0]
-        frame = {k: v for k, v in (("origin", args.origin and [length * x for x in args.origin]),
-                                   ("normal", args.normal), ("x_axis", args.x_axis)) if v}
-        if len(frame) == 3:
-            frame = ContactFrame(**frame, source=str(args.result))
         fields = {k: v for k, v in (("pressure", args.pressure_field),
                                     ("normal_force", args.normal_force_field),
                                     ("reaction", args.reaction_field),
                                     ("stress", args.stress_field)) if v is not None}
-        result = read_result(args.result, units=args.units, symmetry=args.symmetry,
-                             force=args.force, frame=frame, fields=fields)
-        g = grade(result, scene, tol, semi_axes=args.semi_axes)
+
+        def read(frame):
+            return read_result(args.result, units=args.units, symmetry=args.symmetry,
+                               force=args.force, frame=frame, fields=fields)
+        g = grade(_read_framed(read, args, args.result), scene, tol, semi_axes=args.semi_axes)
     json_path, md_path, png_path = output.write_grade(g, out, command)
-    verdict = "PASSED" if g.passed else "FAILED: " + ", ".join(
-        c.name for c in g.checks if c.status == "fail")
-    print(f"{verdict}; wrote {json_path}, {md_path}, {png_path}")
+    print(f"{g.summary}; wrote {json_path}, {md_path}, {png_path}")
     return 0 if g.passed else 1
+
+
+def _frame(args, units: str | None, source) -> dict:
+    """The frame given on the command line (a dict of the parts given, SI), the origin read
+    in the length unit of ``units`` (the file's)."""
+    from .readers.common import units_of
+
+    length = units_of(units or "SI")[0]
+    return {k: v for k, v in (("origin", args.origin and [length * x for x in args.origin]),
+                              ("normal", args.normal), ("x_axis", args.x_axis)) if v}
+
+
+def _read_framed(read, args, source):
+    """``read(frame)`` with the command line's frame; where ``--origin`` was given without
+    ``--units`` and the file named its own units (a ``# units`` line, units in the column
+    names, problem.json), read again with the origin in those units."""
+    result = read(_frame(args, args.units, source))
+    resolved = result.details.get("units")
+    if args.origin and args.units is None and resolved not in (None, "SI"):
+        result = read(_frame(args, resolved, source))
+    return result
 
 
 def main(argv=None) -> int:

@@ -612,3 +612,22 @@ def test_our_own_vtu_graded_through_the_reader_reproduces_the_report(tmp_path):
     assert g.metrics["p0_rel_err"] == pytest.approx(run_.p0_rel_err, abs=1e-9)
     assert g.stress["body1"]["von_mises_rel_err"] == pytest.approx(
         run_.stress["body1"]["von_mises_rel_err"], abs=1e-9)
+
+
+def test_cli_origin_is_in_the_files_units(ball, tmp_path):
+    """--origin is in the file's length unit: a whole model in mm (``# units = mm``), moved
+    by (5, -3, 0) mm, graded with ``--origin 5 -3 0`` and no --units grades as with
+    ``--units mm`` (the origin was read as metres, 1000 times too far)."""
+    scene, toml = ball
+    _, r = synthetic(scene, load=100.0)
+    moved = r.points + [5e-3, -3e-3, 0.0]
+    path = write_csv(tmp_path / "w.csv", moved, r.pressure, meta=("# force = 100", "# units = mm"))
+    rows = []
+    for extra in ((), ("--units", "mm")):
+        out = tmp_path / f"out{len(extra)}"
+        done = run("grade", path, "--scene", toml, "--origin", "5", "-3", "0", *extra,
+                   "--out", out)
+        assert done.returncode == 0, done.stdout + done.stderr
+        rows.append(json.loads((out / "grade.json").read_text()))
+    for key in ("a_rel_err", "b_rel_err", "p0_rel_err"):
+        assert rows[0][key] == rows[1][key]
