@@ -15,7 +15,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from . import _interop, _ufuncs
+from . import _interop, _stress, _tangential, _ufuncs
 from ._validate import (
     as_float_array,
     broadcast_shape,
@@ -87,6 +87,20 @@ _MODES = {"load": (0, _ufuncs.contact_load, _ufuncs.given_load),
           "p0": (2, _ufuncs.contact_p0, _ufuncs.given_p0)}
 _GEOMETRY_NAMES = ("body1.Rx", "body1.Ry", "body2.Rx", "body2.Ry", "angle", "body1.E",
                    "body1.nu", "body2.E", "body2.nu")
+
+# the units of the inputs and fields, for pandas, xarray and pint (hertz._interop)
+_GIVEN_UNITS = {"load": _interop.N, "approach": _interop.M, "p0": _interop.PA}
+_BODY_UNITS = {"Rx": _interop.M, "Ry": _interop.M, "E": _interop.PA, "nu": _interop.ONE}
+#: valid Body fields beside which a bad wrapped field is checked alone (for its labels)
+_BODY_STAND_IN = {"Rx": 1.0, "Ry": 1.0, "E": 1.0, "nu": 0.3}
+_CONTACT_UNITS = {"a": _interop.M, "b": _interop.M, "load": _interop.N, "p0": _interop.PA,
+                  "delta": _interop.M, "stiffness": _interop.N_PER_M}
+_GEOMETRY_UNITS = {"ellipticity": _interop.ONE, "alpha": _interop.ONE, "m": _interop.ONE,
+                   "K": _interop.ONE, "E": _interop.ONE, "e_star": _interop.PA,
+                   "rho_x": _interop.PER_M, "rho_y": _interop.PER_M,
+                   "major_axis_angle": _interop.RAD}
+_LINE_UNITS = {"half_width": _interop.M, "p0": _interop.PA, "e_star": _interop.PA,
+               "rho_sum": _interop.PER_M, "load_per_length": _interop.N_PER_M}
 
 _RADIUS = "a nonzero radius in m (positive convex, negative concave, inf flat)"
 _MODULUS = "a positive, finite Young's modulus in Pa"
@@ -182,7 +196,10 @@ class Body:
     def __init__(self, Rx, Ry, E, nu):
         scalar = type(Rx) is type(Ry) is type(E) is type(nu) is float
         if not scalar and _interop.any_wrapped(Rx, Ry, E, nu):
-            _interop.init_body(self, Rx, Ry, E, nu)  # pandas, xarray, pint
+            # pandas, xarray, pint: checked as numbers, kept in the form given
+            _interop.init_fields(self, {"Rx": Rx, "Ry": Ry, "E": E, "nu": nu}, _BODY_UNITS,
+                                 _BODY_STAND_IN)
+            object.__setattr__(self, "_scalar", False)
             return
         if not scalar:
             Rx, Ry, E, nu = _real(Rx, "Rx"), _real(Ry, "Ry"), _real(E, "E"), _real(nu, "nu")
@@ -444,6 +461,15 @@ class Contact:
     #: moduli (E1, E2), for the tangential compliance
     _nu: tuple = field(repr=False)
 
+    #: the fields a plain twin is made of, with their units (hertz._interop)
+    _UNITS = {**_CONTACT_UNITS, **_GEOMETRY_UNITS}
+
+    @classmethod
+    def _rebuild(cls, fields, nu):
+        """A Contact of the values of ``_UNITS``' fields, in order (hertz._interop's twin
+        of plain values, on which a method runs as for numpy input)."""
+        return cls(*fields[:6], tuple(fields[6:]), nu)
+
     def __post_init__(self):
         _read_only(self.a, self.b, self.load, self.p0, self.delta, self.stiffness)
 
@@ -597,7 +623,7 @@ class Contact:
         if _interop.any_wrapped(self.a, force, mu, direction):
             return _interop.call_method(self, "tangential", (("force", force, "N"), ("mu", mu, ""),
                                                              ("direction", direction, "rad")),
-                                        _interop.TANGENTIAL_UNITS)
+                                        _tangential.TANGENTIAL_UNITS, rtype=_tangential.Tangential)
         return _tangential.partial_slip(self, force, mu, direction)
 
     def fretting(self, amplitude, mu, direction=0.0) -> _tangential.FrettingLoop:
@@ -636,7 +662,8 @@ class Contact:
             return _interop.call_method(self, "fretting", (("amplitude", amplitude, "N"),
                                                            ("mu", mu, ""),
                                                            ("direction", direction, "rad")),
-                                        _interop.FRETTING_UNITS)
+                                        _tangential.FRETTING_UNITS,
+                                        rtype=_tangential.FrettingLoop)
         return _tangential.fretting(self, amplitude, mu, direction)
 
     def stress(self, x, y, z, body=1):
@@ -680,7 +707,8 @@ class Contact:
         """
         if _interop.any_foreign(self.a, x, y, z):
             return _interop.call_method(self, "stress", (("x", x, "m"), ("y", y, "m"),
-                                                         ("z", z, "m")), "Pa", body)
+                                                         ("z", z, "m")), "Pa", body,
+                                        check=_options_check(body), tensor=True)
         return _stress.point_stress(self.a, self.b, self.p0, _stress.poisson_of(self._nu, body),
                                     x, y, z)
 
@@ -716,7 +744,8 @@ class Contact:
         0.3100 p0 at z = 0.4809 a
         """
         if _interop.any_foreign(self.a):
-            return _interop.call_method(self, "subsurface", (), None, body)
+            return _interop.call_method(self, "subsurface", (), _stress.SUBSURFACE_UNITS, body,
+                                        rtype=_stress.Subsurface, check=_options_check(body))
         return _stress.subsurface(self.a, self.b, self.p0, _stress.poisson_of(self._nu, body))
 
     def first_yield_load(self, yield_strength, body=1, criterion="von_mises"):
@@ -768,15 +797,13 @@ class Contact:
         if _interop.any_foreign(self.a, yield_strength):
             return _interop.call_method(self, "first_yield_load",
                                         (("yield_strength", yield_strength, "Pa"),), "N", body,
-                                        criterion)
+                                        criterion, check=_options_check(body, criterion))
         nu = _stress.poisson_of(self._nu, body)
         lam = self.ellipticity
         unit = _stress.subsurface(1.0, 1.0 / lam, 1.0, nu)  # the maxima for a = 1, p0 = 1
         p0_yield = _stress.yield_p0((unit.von_mises, unit.tau_max), yield_strength, criterion)
         return _stress.load_for_p0(p0_yield, lam, self.E, self.e_star, self.rho_sum)
 
-
-from . import _stress, _tangential  # noqa: E402  (they use Contact's fields only)
 
 _ufuncs.register_contact_type(Contact)
 
@@ -836,6 +863,14 @@ class LineContact:
     load_per_length: float | np.ndarray
     #: Poisson's ratios (nu1, nu2) of the bodies, for the stresses
     _nu: tuple = field(repr=False)
+
+    #: the fields a plain twin is made of, with their units (hertz._interop)
+    _UNITS = _LINE_UNITS
+
+    @classmethod
+    def _rebuild(cls, fields, nu):
+        """A LineContact of the values of ``_UNITS``' fields, in order (hertz._interop)."""
+        return cls(*fields, nu)
 
     def __post_init__(self):
         _read_only(self.half_width, self.p0, self.e_star, self.rho_sum, self.load_per_length)
@@ -927,7 +962,7 @@ class LineContact:
         """
         if _interop.any_foreign(self.half_width, x, z):
             return _interop.call_method(self, "stress", (("x", x, "m"), ("z", z, "m")), "Pa",
-                                        body)
+                                        body, check=_options_check(body), tensor=True)
         return _stress.line_stress(self.half_width, self.p0,
                                    _stress.poisson_of(self._nu, body), x, z)
 
@@ -965,9 +1000,22 @@ class LineContact:
         von Mises 0.5575 p0 at z = 0.7043 b
         """
         if _interop.any_foreign(self.half_width):
-            return _interop.call_method(self, "subsurface", (), None, body)
+            return _interop.call_method(self, "subsurface", (), _stress.LINE_SUBSURFACE_UNITS,
+                                        body, rtype=_stress.LineSubsurface,
+                                        check=_options_check(body))
         return _stress.line_subsurface(self.half_width, self.p0,
                                        _stress.poisson_of(self._nu, body))
+
+
+def _options_check(body, criterion=None):
+    """The check of a method's ``body`` (and yield ``criterion``) that hertz._interop runs
+    for pandas, xarray, pint or dask values before any block is computed."""
+    def check():
+        _stress.poisson_of((0.3, 0.3), body)
+        if criterion is not None:
+            _stress.yield_p0((1.0, 1.0), 1.0, criterion)
+
+    return check
 
 
 def _check_body(body, name: str) -> Body:
@@ -1167,12 +1215,12 @@ def contact(body1: Body, body2: Body, load=None, angle=0.0, *, approach=None,
         return c
     if _interop.any_wrapped(value, angle, body1.Rx, body1.Ry, body1.E, body1.nu, body2.Rx,
                             body2.Ry, body2.E, body2.nu):
-        return _interop.contact(body1, body2, name, value, angle)  # pandas, xarray, pint
+        return _wrapped_contact(body1, body2, name, value, angle)  # pandas, xarray, pint
     args = [body1.Rx, body1.Ry, body2.Rx, body2.Ry, _kept_arg(angle, "angle"), body1.E,
             body1.nu, body2.E, body2.nu, _real_arg(value, name)]
     geometry = args[:9]
     if any(is_duck_array(a) for a in args):
-        return _interop.dask_contact(fused, args, (body1.nu, body2.nu, body1.E, body2.E))
+        return _dask_contact(fused, args, (body1.nu, body2.nu, body1.E, body2.E))
     geometry_shape = broadcast_shape(**dict(zip(_GEOMETRY_NAMES, geometry, strict=True)))
     shape = broadcast_shape(**dict(zip(_GEOMETRY_NAMES, geometry, strict=True)),
                             **{name: args[9]})
@@ -1260,11 +1308,11 @@ def line_contact(body1: Body, body2: Body, load_per_length) -> LineContact:
         return lc
     if _interop.any_wrapped(load_per_length, body1.Rx, body1.Ry, body1.E, body1.nu, body2.Rx,
                             body2.Ry, body2.E, body2.nu):
-        return _interop.line_contact(body1, body2, load_per_length)  # pandas, xarray, pint
+        return _wrapped_line_contact(body1, body2, load_per_length)  # pandas, xarray, pint
     args = [body1.Rx, body1.Ry, body2.Rx, body2.Ry, body1.E, body1.nu, body2.E, body2.nu,
             _real_arg(load_per_length, "load_per_length")]
     if any(is_duck_array(a) for a in args):
-        return _interop.dask_line(args, (body1.nu, body2.nu))
+        return _dask_line(args, (body1.nu, body2.nu))
     names = [n for n in _GEOMETRY_NAMES if n != "angle"] + ["load_per_length"]
     shape = broadcast_shape(**dict(zip(names, args, strict=True)))
     try:
@@ -1275,3 +1323,63 @@ def line_contact(body1: Body, body2: Body, load_per_length) -> LineContact:
     _check_size(lc.half_width, body1, body2, "b")
     return lc
 
+
+# --------------------------------------------------------------------------- other libraries
+
+def _body_items(body, prefix):
+    return [(f"{prefix}.{k}", getattr(body, k), u) for k, u in _BODY_UNITS.items()]
+
+
+def _wrapped_contact(body1, body2, name, value, angle):
+    """:func:`contact` for pandas, xarray or pint inputs: unwrap, solve, wrap."""
+    items = (_body_items(body1, "body1") + _body_items(body2, "body2")
+             + [("angle", angle, _interop.RAD), (name, value, _GIVEN_UNITS[name])])
+    plain, recipe = _interop.unwrap(items)
+    try:
+        result = contact(Body(*plain[0:4]), Body(*plain[4:8]), angle=plain[8],
+                         **{name: plain[9]})
+    except ValueError as exc:
+        raise recipe.labelled(exc) from None
+    fields = [recipe.wrap(getattr(result, k), u, k) for k, u in _CONTACT_UNITS.items()]
+
+    def wrap_geometry(values):
+        return tuple(recipe.wrap(v, u, k)
+                     for v, (k, u) in zip(values, _GEOMETRY_UNITS.items(), strict=True))
+
+    geometry = result._geometry
+    if type(geometry) is _Deferred:  # computed (and wrapped) when first read, as for numpy
+        geometry = _Deferred(geometry.inputs, geometry.shape, wrap_geometry)
+    else:
+        geometry = wrap_geometry(getattr(result, k) for k in _GEOMETRY_UNITS)
+    return Contact(*fields, geometry, (body1.nu, body2.nu, body1.E, body2.E))
+
+
+def _wrapped_line_contact(body1, body2, load_per_length):
+    """:func:`line_contact` for pandas, xarray or pint inputs."""
+    items = (_body_items(body1, "body1") + _body_items(body2, "body2")
+             + [("load_per_length", load_per_length, _interop.N_PER_M)])
+    plain, recipe = _interop.unwrap(items)
+    try:
+        result = line_contact(Body(*plain[0:4]), Body(*plain[4:8]), plain[8])
+    except ValueError as exc:
+        raise recipe.labelled(exc) from None
+    return LineContact(*(recipe.wrap(getattr(result, k), u, k) for k, u in _LINE_UNITS.items()),
+                       (body1.nu, body2.nu))
+
+
+def _dask_contact(fused, args, nu):
+    """A Contact of dask arrays: the six load fields and the nine geometry fields (all
+    of the broadcast shape and chunks), computed when asked."""
+    names = _GEOMETRY_NAMES + tuple(k for k, (_, f, _) in _MODES.items() if f is fused)
+    fields = _interop.dask_map(fused, args, nout=6, names=names)
+
+    def geometry(*values):
+        return _ufuncs.contact_geometry(*values[:9])
+
+    return Contact(*fields, _interop.dask_map(geometry, args, nout=9, names=names), nu)
+
+
+def _dask_line(args, nu):
+    """A LineContact of dask arrays."""
+    names = tuple(k for k in _GEOMETRY_NAMES if k != "angle") + ("load_per_length",)
+    return LineContact(*_interop.dask_map(_ufuncs.line, args, nout=5, names=names), nu)

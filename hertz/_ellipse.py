@@ -144,7 +144,12 @@ def ellipticity(alpha, *, iterations=DEFAULT_ITERATIONS, out=None):
         # memory to learn the result type (a ValueError there would hide it)
         return ufunc(alpha, out=out, dtype=np.float64)
     if _interop.any_wrapped(alpha):
-        return _interop.ellipticity(alpha, iterations, out)  # pandas, xarray, pint
+        plain, recipe = _interop.unwrap([("alpha", alpha, _interop.ONE)])  # pandas, xarray, pint
+        try:
+            lam = ellipticity(plain[0], iterations=iterations, out=out)
+        except ValueError as exc:
+            raise recipe.labelled(exc) from None
+        return recipe.wrap(lam, _interop.ONE, "ellipticity")
     arr = as_float_array(alpha, "alpha")
     try:
         lam = ufunc(arr) if out is None else ufunc(arr, out=out)

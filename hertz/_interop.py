@@ -28,6 +28,13 @@ results the same way:
 
 No library is imported here at import time: a value is recognised by the
 module of its type, and its library imported only when one arrives.
+
+This module knows no result type and imports no other module of hertz but
+``_validate``: it sits below the solvers.  Each result type takes itself apart
+and rebuilds itself (``_UNITS``, ``_rebuild`` on Contact and LineContact; the
+dataclass fields of Tangential and FrettingLoop), and each solver wraps its own
+results with :func:`unwrap` and :meth:`Recipe.wrap` (``hertz._contact``,
+``hertz._ellipse``, ``hertz._tangential``).
 """
 
 from __future__ import annotations
@@ -48,21 +55,6 @@ M, PA, N, RAD, ONE, N_PER_M, PER_M = "m", "Pa", "N", "rad", "", "N/m", "1/m"
 _MEASURES = {M: "a length", PA: "a pressure (or modulus)", N: "a force", RAD: "an angle",
              ONE: "a dimensionless number", N_PER_M: "a force per length",
              PER_M: "a curvature"}
-#: units of the value given to contact(): load, approach or p0
-GIVEN_UNITS = {"load": N, "approach": M, "p0": PA}
-CONTACT_UNITS = {"a": M, "b": M, "load": N, "p0": PA, "delta": M, "stiffness": N_PER_M}
-GEOMETRY_UNITS = {"ellipticity": ONE, "alpha": ONE, "m": ONE, "K": ONE, "E": ONE,
-                  "e_star": PA, "rho_x": PER_M, "rho_y": PER_M, "major_axis_angle": RAD}
-LINE_UNITS = {"half_width": M, "p0": PA, "e_star": PA, "rho_sum": PER_M,
-              "load_per_length": N_PER_M}
-_BODY_UNITS = {"Rx": M, "Ry": M, "E": PA, "nu": ONE}
-#: the fields of the tangential results (None: a flag, wrapped in a container, never a unit)
-TANGENTIAL_UNITS = {"force": N, "mu": ONE, "direction": RAD, "stick_a": M, "stick_b": M,
-                    "slip_area": "m**2", "displacement": M, "displacement_transverse": M,
-                    "stiffness": N_PER_M, "no_slip_stiffness": N_PER_M, "sliding": None,
-                    "dundurs_beta": ONE, "_a": M, "_b": M, "_p0": PA}
-FRETTING_UNITS = {"amplitude": N, "displacement_amplitude": M, "energy": "J",
-                  "stiffness": N_PER_M, "mu": ONE, "load": N, "_reach": M}
 #: axes of a stress tensor in an xarray result
 _TENSOR_DIMS = ("row", "column")
 
@@ -359,24 +351,24 @@ def _wrap_like(value, plain):
     return plain
 
 
-def init_body(body, Rx, Ry, E, nu) -> None:
-    """Set the fields of a Body given pandas, xarray or pint values: each is checked
-    (as any Body field) and kept in the form given (a Quantity in SI units)."""
-    from ._contact import Body
-
-    given = {"Rx": Rx, "Ry": Ry, "E": E, "nu": nu}
+def init_fields(obj, given, units, stand_in) -> None:
+    """Set the fields ``given`` ({name: value}) of the frozen ``obj`` from pandas, xarray
+    or pint values: each is checked as ``type(obj)(**plain values)`` checks it, and kept
+    in the form given (a Quantity in the SI unit of ``units``).  A check that fails is
+    repeated for each field alone beside the valid ``stand_in`` values, so that the error
+    carries that field's labels."""
+    cls = type(obj)
     plain, recipes = {}, {}
     for name, value in given.items():
-        values, recipes[name] = unwrap([(name, value, _BODY_UNITS[name])])
+        values, recipes[name] = unwrap([(name, value, units[name])])
         plain[name] = values[0]
     try:
-        checked = Body(**plain)
+        checked = cls(**plain)
     except ValueError as exc:
         # which field: check each alone beside valid stand-ins, for its labels
-        stand_in = {"Rx": 1.0, "Ry": 1.0, "E": 1.0, "nu": 0.3}
         for name in given:
             try:
-                Body(**{**stand_in, name: plain[name]})
+                cls(**{**stand_in, name: plain[name]})
             except ValueError as alone:
                 raise recipes[name].labelled(alone) from None
         raise exc from None  # pragma: no cover - some field fails alone
@@ -384,118 +376,50 @@ def init_body(body, Rx, Ry, E, nu) -> None:
     for name, value in given.items():
         field = getattr(checked, name)
         if library(value) == "pint":
-            field = value._REGISTRY.Quantity(field, _unit(value._REGISTRY, _BODY_UNITS[name]))
+            field = value._REGISTRY.Quantity(field, _unit(value._REGISTRY, units[name]))
         elif library(value) in _WRAPPERS:
             field = _wrap_like(value, field)
-        setter(body, name, field)
-    setter(body, "_scalar", False)
+        setter(obj, name, field)
 
 
-# --------------------------------------------------------------------------- entry points
+# --------------------------------------------------------------------------- methods
 
-def _body_items(body, prefix):
-    return [(f"{prefix}.{k}", getattr(body, k), u) for k, u in _BODY_UNITS.items()]
+def call_method(result, method: str, arguments, unit, *options, rtype=None, check=None,
+                tensor: bool = False):
+    """``result.method(*arguments, *options)`` of a result whose fields or arguments are
+    pandas, xarray, pint or dask: unwrap, compute (block by block for dask), wrap.
 
-
-def contact(body1, body2, name, value, angle):
-    """hertz.contact for pandas, xarray or pint inputs: unwrap, solve, wrap."""
-    from ._contact import Body, Contact, _Deferred
-    from ._contact import contact as solve
-
-    items = (_body_items(body1, "body1") + _body_items(body2, "body2")
-             + [("angle", angle, RAD), (name, value, GIVEN_UNITS[name])])
-    plain, recipe = unwrap(items)
-    try:
-        result = solve(Body(*plain[0:4]), Body(*plain[4:8]), angle=plain[8],
-                       **{name: plain[9]})
-    except ValueError as exc:
-        raise recipe.labelled(exc) from None
-    fields = [recipe.wrap(getattr(result, k), u, k) for k, u in CONTACT_UNITS.items()]
-
-    def wrap_geometry(values):
-        return tuple(recipe.wrap(v, u, k)
-                     for v, (k, u) in zip(values, GEOMETRY_UNITS.items(), strict=True))
-
-    geometry = result._geometry
-    if type(geometry) is _Deferred:  # computed (and wrapped) when first read, as for numpy
-        geometry = _Deferred(geometry.inputs, geometry.shape, wrap_geometry)
-    else:
-        geometry = wrap_geometry(getattr(result, k) for k in GEOMETRY_UNITS)
-    return Contact(*fields, geometry, (body1.nu, body2.nu, body1.E, body2.E))
-
-
-def line_contact(body1, body2, load_per_length):
-    """hertz.line_contact for pandas, xarray or pint inputs."""
-    from ._contact import Body, LineContact
-    from ._contact import line_contact as solve
-
-    items = (_body_items(body1, "body1") + _body_items(body2, "body2")
-             + [("load_per_length", load_per_length, N_PER_M)])
-    plain, recipe = unwrap(items)
-    try:
-        result = solve(Body(*plain[0:4]), Body(*plain[4:8]), plain[8])
-    except ValueError as exc:
-        raise recipe.labelled(exc) from None
-    return LineContact(*(recipe.wrap(getattr(result, k), u, k) for k, u in LINE_UNITS.items()),
-                       (body1.nu, body2.nu))
-
-
-def ellipticity(alpha, iterations, out):
-    """hertz.ellipticity of a Series, DataArray or dimensionless Quantity."""
-    from ._ellipse import ellipticity as solve
-
-    plain, recipe = unwrap([("alpha", alpha, ONE)])
-    try:
-        lam = solve(plain[0], iterations=iterations, out=out)
-    except ValueError as exc:
-        raise recipe.labelled(exc) from None
-    return recipe.wrap(lam, ONE, "ellipticity")
-
-
-#: the fields of a contact with their units, from which a plain twin is made
-_POINT_FIELDS = {**CONTACT_UNITS, **GEOMETRY_UNITS}
-
-
-def call_method(result, method: str, arguments, unit, *options):
-    """``result.method(*arguments, *options)`` of a Contact or LineContact whose fields
-    or arguments are pandas, xarray, pint or dask: unwrap, compute (block by block
-    for dask), wrap.  ``arguments`` are (name, value, unit); ``unit`` is that of the
-    result (None: a Subsurface, whose fields are in Pa, or in m for the positions; a
-    dict: the units of the fields of the method's result, a Tangential or FrettingLoop)."""
-    from ._contact import Contact, LineContact
-
+    The result type says how it is taken apart and rebuilt: ``type(result)._UNITS``
+    ({field: unit}) are the fields its plain twin is made of, ``result._nu`` the Poisson's
+    ratios (nu1, nu2), then the Young's moduli (E1, E2) where it keeps them, and
+    ``type(result)._rebuild(fields, nu)`` makes the twin of plain values, on which the
+    method runs as for numpy input.  ``arguments`` are (name, value, unit); ``unit`` is that
+    of the method's value (a str; ``tensor``: a (..., 3, 3) stress tensor), or with
+    ``rtype`` (the type of the method's value, rebuilt from its fields in order) the
+    dict {field: unit} of that type (unit None: a flag, kept a plain bool).  ``check()``
+    judges the ``options`` before any block is computed."""
     kind = type(result)
-    own = _POINT_FIELDS if kind is Contact else LINE_UNITS
-    # Poisson's ratios, then the Young's moduli where the contact keeps them (tangential)
+    own = kind._UNITS
+    # Poisson's ratios, then the Young's moduli where the result keeps them (tangential)
     moduli = [("nu1", ONE), ("nu2", ONE), ("E1", PA), ("E2", PA)][:len(result._nu)]
     items = ([(k, getattr(result, k), u) for k, u in own.items()]
              + [(k, v, u) for (k, u), v in zip(moduli, result._nu, strict=True)]
              + list(arguments))
     plain, recipe = unwrap(items)
     nown = len(own) + len(moduli)
-    _check_options(method, options)
+    if check is not None:
+        check()
     plain[nown:] = [v if is_dask(v) else as_float_array(v, name)
                     for v, (name, _, _) in zip(plain[nown:], arguments, strict=True)]
 
     def evaluate(*values):
-        # a contact of plain values (whole arrays, or a dask block of each), every field
+        # a result of plain values (whole arrays, or a dask block of each), every field
         # included, on which the method runs as for numpy input
-        fields, nu = values[:len(own)], values[len(own):nown]
-        if kind is Contact:
-            twin = Contact(*fields[:6], tuple(fields[6:]), nu)
-        else:
-            twin = LineContact(*fields, nu)
+        twin = kind._rebuild(values[:len(own)], values[len(own):nown])
         return getattr(kind, method)(twin, *values[nown:], *options)
 
-    tensor = method == "stress"
-    if unit is None:  # a Subsurface: stresses in Pa, their positions in m
-        rtype = _subsurface_type(kind)
-        unit = {f.name: M if f.name[:2] in ("x_", "y_", "z_") else PA
-                for f in _subsurface_fields(kind)}
-    elif isinstance(unit, dict):
-        rtype = _result_type(method)
     if any(is_dask(v) for v in plain):
-        if isinstance(unit, dict):
+        if rtype is not None:
             names = list(unit)
             fields = dask_map(lambda *v: _as_tuple(evaluate(*v), names), plain, nout=len(names))
             out = rtype(*(f if unit[k] is not None else f.astype(bool)
@@ -507,14 +431,15 @@ def call_method(result, method: str, arguments, unit, *options):
             out = evaluate(*plain)
         except ValueError as exc:
             raise recipe.labelled(exc) from None
-    if isinstance(unit, dict):
+    if rtype is not None:
         return rtype(*(recipe.wrap(getattr(out, k), u, k) for k, u in unit.items()))
     return recipe.wrap(out, unit, method, tensor=tensor)
 
 
 def call_result_method(result, method: str, arguments, unit: str, units):
-    """``result.method(*arguments)`` of a Tangential or FrettingLoop whose fields (of
-    ``units``) or arguments are pandas, xarray or pint: unwrap, compute, wrap in ``unit``."""
+    """``result.method(*arguments)`` of a dataclass result (a Tangential, a FrettingLoop)
+    whose fields (of ``units``) or arguments are pandas, xarray or pint: unwrap, compute on
+    the plain twin ``type(result)(**fields)``, wrap in ``unit``."""
     import dataclasses
 
     names = [k for k, u in units.items() if u is not None]
@@ -530,45 +455,6 @@ def call_result_method(result, method: str, arguments, unit: str, units):
     except ValueError as exc:
         raise recipe.labelled(exc) from None
     return recipe.wrap(out, unit, method)
-
-
-def fretting_loop(result, points):
-    """``FrettingLoop.loop`` of a result whose fields are pandas, xarray or pint: the loop
-    of the plain twin, its point axis in front, wrapped (:meth:`Recipe.wrap_points`)."""
-    plain, recipe = unwrap([(k, getattr(result, k), u) for k, u in FRETTING_UNITS.items()])
-    twin = type(result)(**dict(zip(FRETTING_UNITS, plain, strict=True)))
-    force, displacement = type(result).loop(twin, points)
-    return (recipe.wrap_points(force, N, "force"),
-            recipe.wrap_points(displacement, M, "displacement"))
-
-
-def _result_type(method):
-    from ._tangential import FrettingLoop, Tangential
-
-    return {"tangential": Tangential, "fretting": FrettingLoop}[method]
-
-
-def _check_options(method, options):
-    """The body (and criterion) now, not when a dask block is computed."""
-    from ._stress import poisson_of, yield_p0
-
-    if options:
-        poisson_of((0.3, 0.3), options[0])
-    if method == "first_yield_load":
-        yield_p0((1.0, 1.0), 1.0, options[1])
-
-
-def _subsurface_type(kind):
-    from ._contact import Contact
-    from ._stress import LineSubsurface, Subsurface
-
-    return Subsurface if kind is Contact else LineSubsurface
-
-
-def _subsurface_fields(kind):
-    import dataclasses
-
-    return dataclasses.fields(_subsurface_type(kind))
 
 
 def _as_tuple(out, names):
@@ -669,27 +555,3 @@ def _located(func, values, starts, shape, exc) -> ValueError:
     local = np.unravel_index(lo, bshape) if bshape else ()
     index = tuple(s + int(i) for s, i in zip(starts, local, strict=True))
     return with_index(one, shape, int(np.ravel_multi_index(index, shape)) if shape else 0)
-
-
-def dask_contact(fused, args, nu):
-    """A Contact of dask arrays: the six load fields and the nine geometry fields (all
-    of the broadcast shape and chunks), computed when asked."""
-    from . import _ufuncs
-    from ._contact import _GEOMETRY_NAMES, _MODES, Contact
-
-    names = _GEOMETRY_NAMES + tuple(k for k, (_, f, _) in _MODES.items() if f is fused)
-    fields = dask_map(fused, args, nout=6, names=names)
-
-    def geometry(*values):
-        return _ufuncs.contact_geometry(*values[:9])
-
-    return Contact(*fields, dask_map(geometry, args, nout=9, names=names), nu)
-
-
-def dask_line(args, nu):
-    """A LineContact of dask arrays."""
-    from . import _ufuncs
-    from ._contact import _GEOMETRY_NAMES, LineContact
-
-    names = tuple(k for k in _GEOMETRY_NAMES if k != "angle") + ("load_per_length",)
-    return LineContact(*dask_map(_ufuncs.line, args, nout=5, names=names), nu)

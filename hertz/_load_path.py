@@ -119,6 +119,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from . import _interop
+from ._contact import contact as _contact
 from ._tangential import _mu, dundurs_beta, tangential_stiffness
 from ._validate import as_float_array, error_at, first_failure
 
@@ -534,8 +535,6 @@ def load_path(body1, body2, normal_forces, tangential_forces, mu, angle=0.0, dir
     >>> print(f"{path.stick_a[3] / t.stick_a:.12f}")
     1.000000000000
     """
-    from ._contact import contact as _contact
-
     # pint quantities in any unit of their kind, as SI numbers (never a bare magnitude)
     given = []
     for name, value, unit in (("normal_forces", normal_forces, _interop.N),
@@ -646,8 +645,6 @@ class LoadPathSpring:
     """
 
     def __init__(self, body1, body2, mu, angle=0.0, direction=0.0):
-        from ._contact import contact as _contact
-
         if _interop.library(mu) == "pint":
             mu = _interop._to_si(mu, "mu", _interop.ONE)
         if np.ndim(mu) != 0:

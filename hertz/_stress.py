@@ -7,6 +7,7 @@ lengths, and wraps the maxima in :class:`Subsurface`.
 
 from __future__ import annotations
 
+import dataclasses
 import math
 from dataclasses import dataclass
 
@@ -89,6 +90,17 @@ class LineSubsurface:
     tau_orthogonal: float | np.ndarray
     x_tau_orthogonal: float | np.ndarray
     z_tau_orthogonal: float | np.ndarray
+
+
+def _field_units(cls) -> dict:
+    """{field: unit} of a maxima type: positions (x_, y_, z_) in m, stresses in Pa, for
+    results of pandas, xarray, pint or dask values (hertz._interop)."""
+    return {f.name: "m" if f.name[:2] in ("x_", "y_", "z_") else "Pa"
+            for f in dataclasses.fields(cls)}
+
+
+SUBSURFACE_UNITS = _field_units(Subsurface)
+LINE_SUBSURFACE_UNITS = _field_units(LineSubsurface)
 
 
 def poisson_of(nu_pair, body) -> float | np.ndarray:

@@ -78,13 +78,32 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from . import _interop, _ufuncs
-from ._validate import as_float_array, broadcast_shape, error_at, first_failure, index_text
+from ._stress import point_stress, poisson_of
+from ._validate import (
+    as_float_array,
+    broadcast_shape,
+    error_at,
+    first_failure,
+    index_text,
+    with_index,
+)
 
 __all__ = ["FrettingLoop", "Tangential", "TangentialSpring", "dundurs_beta",
            "proportional_loading", "tangential_compliance", "tangential_history"]
 
 _MU = "a positive, finite coefficient of friction"
 _DIRECTION = "a finite angle in rad"
+
+# the units of the results' fields, for pandas, xarray and pint (hertz._interop); None: a
+# flag, wrapped in a container, never a unit
+_M, _N, _N_PER_M, _ONE = _interop.M, _interop.N, _interop.N_PER_M, _interop.ONE
+TANGENTIAL_UNITS = {"force": _N, "mu": _ONE, "direction": _interop.RAD, "stick_a": _M,
+                    "stick_b": _M, "slip_area": "m**2", "displacement": _M,
+                    "displacement_transverse": _M, "stiffness": _N_PER_M,
+                    "no_slip_stiffness": _N_PER_M, "sliding": None, "dundurs_beta": _ONE,
+                    "_a": _M, "_b": _M, "_p0": _interop.PA}
+FRETTING_UNITS = {"amplitude": _N, "displacement_amplitude": _M, "energy": "J",
+                  "stiffness": _N_PER_M, "mu": _ONE, "load": _N, "_reach": _M}
 
 
 # ----------------------------------------------------------------------- input checks
@@ -388,7 +407,7 @@ class Tangential:
         """
         if _interop.any_wrapped(self._a, x, y):  # pandas, xarray, pint
             return _interop.call_result_method(self, "traction", (("x", x, "m"), ("y", y, "m")),
-                                               "Pa", _interop.TANGENTIAL_UNITS)
+                                               "Pa", TANGENTIAL_UNITS)
         x = as_float_array(x, "x")
         y = as_float_array(y, "y")
         with np.errstate(divide="ignore", invalid="ignore"):
@@ -406,8 +425,6 @@ class Tangential:
     # body 1's held back: the traction on body 2 is along ``direction``, on body 1
     # along direction + pi.
     def _poisson(self, body, what):
-        from ._stress import poisson_of
-
         if self._nu is None:
             raise TypeError(f"Tangential.{what} needs numpy fields: this result was built "
                             "around pandas, xarray, pint or dask values; call "
@@ -469,8 +486,8 @@ class Tangential:
         >>> print(f"{s1[0, 2] / t.traction(x, 0.0):.12f} {s2[0, 2] / t.traction(x, 0.0):.12f}")
         1.000000000000 -1.000000000000
         """
+        # (scipy's import, for the sliding maxima, waits until a stress is asked for)
         from ._friction import partial_slip_stress
-        from ._stress import point_stress
 
         nu = self._poisson(body, "stress")
         normal = point_stress(self._a, self._b, self._p0, nu, x, y, z)
@@ -532,7 +549,6 @@ class Tangential:
         0.660 p0 at z = 0.428 a
         """
         from ._friction import SlidingMaxima, check_maxima_inputs, sliding_maxima
-        from ._validate import with_index
 
         nu = self._poisson(body, "maxima")
         turn = math.pi if body == 1 else 0.0  # body 1 carries the reversed traction
@@ -633,7 +649,7 @@ class FrettingLoop:
         delta* - 2 f((Q* - Q)/2), for -Q* <= force <= Q* [N]."""
         if _interop.any_wrapped(self._reach, force):  # pandas, xarray, pint
             return _interop.call_result_method(self, "unloading", (("force", force, "N"),), "m",
-                                               _interop.FRETTING_UNITS)
+                                               FRETTING_UNITS)
         force = as_float_array(force, "force")
         return _out(self.displacement_amplitude - 2.0 * self._f((self.amplitude - force) / 2.0))
 
@@ -641,9 +657,19 @@ class FrettingLoop:
         """Displacement [m] on the branch from -Q* up to Q*: -delta* + 2 f((Q* + Q)/2)."""
         if _interop.any_wrapped(self._reach, force):  # pandas, xarray, pint
             return _interop.call_result_method(self, "reloading", (("force", force, "N"),), "m",
-                                               _interop.FRETTING_UNITS)
+                                               FRETTING_UNITS)
         force = as_float_array(force, "force")
         return _out(-self.displacement_amplitude + 2.0 * self._f((self.amplitude + force) / 2.0))
+
+    def _wrapped_loop(self, points):
+        """:meth:`loop` of a result whose fields are pandas, xarray or pint: the loop of
+        the plain twin, its point axis in front, wrapped (``Recipe.wrap_points``)."""
+        plain, recipe = _interop.unwrap([(k, getattr(self, k), u)
+                                         for k, u in FRETTING_UNITS.items()])
+        twin = type(self)(**dict(zip(FRETTING_UNITS, plain, strict=True)))
+        force, displacement = type(self).loop(twin, points)
+        return (recipe.wrap_points(force, _N, "force"),
+                recipe.wrap_points(displacement, _M, "displacement"))
 
     def loop(self, points=101):
         """The closed loop: (force, displacement) [N, m], each of shape (2 points - 1, ...),
@@ -656,7 +682,7 @@ class FrettingLoop:
         third axis), numpy arrays of shape (2 points - 1, rows, columns).
         """
         if _interop.any_wrapped(self._reach):  # pandas, xarray, pint
-            return _interop.fretting_loop(self, points)
+            return self._wrapped_loop(points)
         t = np.linspace(1.0, -1.0, int(points))
         t = t.reshape((-1,) + (1,) * np.ndim(self.amplitude))
         down = t * self.amplitude

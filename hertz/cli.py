@@ -14,8 +14,8 @@ scene file change any of it::
 
 ``hertz --help`` ends with the scene-file format (every key, its unit and
 default) and the default scene; both are generated from ``SCENE_KEYS``,
-``BODY_KEYS`` and ``DEFAULT_SCENE`` below, which are also what
-``--print-scene`` writes and ``--scene`` reads.
+``BODY_KEYS`` (the format, in ``hertz._scene``, which reads scene files for
+``--scene``) and ``DEFAULT_SCENE`` below, which is what ``--print-scene`` writes.
 
 Errors (bad values, a missing or oversized file, no Hertz contact, output
 that cannot be written) print one line on stderr and exit with status 2.
@@ -35,13 +35,13 @@ import math
 import os
 import re
 import sys
-import tomllib
 import warnings
 
 import numpy as np
 
 from . import __version__
 from ._contact import Body, HertzValidityWarning, contact
+from ._scene import BODY_KEYS, SCENE_KEYS, SceneError, read_scene
 
 DEFAULT_SCENE = {
     "name": "bearing ball on inner race (default scene)",
@@ -51,33 +51,13 @@ DEFAULT_SCENE = {
     "angle_deg": 0.0,
 }
 
-#: The top-level keys of a scene file: (key, unit, meaning).
-SCENE_KEYS = (
-    ("name", "", "label printed with the results (default: the file's path)"),
-    ("load", "N", "normal force, >= 0 (0: no contact patch, no stresses)"),
-    ("approach", "m", "instead of load: the approach of the bodies (the load is computed)"),
-    ("angle_deg", "deg", "angle between the bodies' x axes"),
-    ("tangential", "N", "tangential force, <= mu * load, along direction_deg"),
-    ("mu", "-", "coefficient of friction, > 0 (tangential and mu: both or neither)"),
-    ("direction_deg", "deg", "angle of the tangential force from the contact ellipse's major "
-     "axis (default 0; with tangential)"),
-)
-#: The keys of the [body1] and [body2] tables: (key, unit, meaning).
-BODY_KEYS = (
-    ("Rx", "m", "principal radius along the body's x axis: > 0 convex, < 0 concave, inf flat"),
-    ("Ry", "m", "principal radius along the body's y axis (same signs)"),
-    ("E", "Pa", "Young's modulus, > 0"),
-    ("nu", "-", "Poisson's ratio, in (-1, 0.5]"),
-)
+#: The keys of a [body1] or [body2] table (the format: hertz._scene).
 _BODY_KEYS = tuple(key for key, _, _ in BODY_KEYS)
 #: Options that change the scene (the others only add output).
 _SCENE_OPTIONS = ("r1x", "r1y", "e1", "nu1", "r2x", "r2y", "e2", "nu2", "load", "approach",
                   "angle_deg", "tangential", "mu", "direction_deg")
 #: The scene keys of the tangential force, set together or not at all.
 _TANGENTIAL_KEYS = ("tangential", "mu")
-#: A scene file is a few lines; refusing big ones keeps ``--scene /dev/zero`` from
-#: filling the memory.
-_MAX_SCENE_BYTES = 1 << 20
 _PLOT_EXTRA = "pip install 'hertz-contact[plot]'"
 
 
@@ -272,47 +252,26 @@ def _encodable(ch: str, encoding: str | None) -> bool:
 
 
 def _read_scene(path: str) -> dict:
+    """The scene of the file ``path`` (hertz._scene reads and checks it), on top of the
+    default scene: a key the file leaves out keeps the default's value."""
     try:
-        with open(path, "rb") as f:
-            data = f.read(_MAX_SCENE_BYTES + 1)
-    except OSError as exc:
-        raise _UsageError(f"cannot read scene file {path!r}: {exc.strerror or exc}") from None
-    if len(data) > _MAX_SCENE_BYTES:
-        raise _UsageError(f"scene file {path!r} is larger than {_MAX_SCENE_BYTES} bytes "
-                          "(a scene is a few lines)")
-    try:
-        scene = tomllib.loads(data.decode("utf-8"))
-    except (tomllib.TOMLDecodeError, UnicodeDecodeError) as exc:
-        raise _UsageError(f"scene file {path!r} is not valid TOML: {exc}") from None
-    except RecursionError:
-        raise _UsageError(f"scene file {path!r} is nested too deeply to read") from None
-    except ValueError as exc:  # an integer of more than 4300 digits
-        raise _UsageError(f"scene file {path!r} cannot be read: {exc}") from None
+        given = read_scene(path)
+    except SceneError as exc:
+        if exc.reason is None:  # the file as a whole: the message names it
+            message = str(exc)
+        elif exc.key not in (None, "name"):  # a number: worded as for the same option's
+            message = exc.reason
+        else:
+            message = f"scene file: {exc.reason}"
+        raise _UsageError(message) from None
     merged = _copy(DEFAULT_SCENE)
     merged["name"] = path
-    for key, value in scene.items():
+    for key, value in given.items():
         if key in ("body1", "body2"):
-            if not isinstance(value, dict):
-                raise _UsageError(f"scene file: [{key}] must be a table, got {_kind(value)}")
-            unknown = set(value) - set(_BODY_KEYS)
-            if unknown:
-                names = ", ".join(_show(name) for name in sorted(unknown))
-                raise _UsageError(f"scene file: unknown key(s) in [{key}]: {names} "
-                                  f"(allowed: {', '.join(_BODY_KEYS)})")
-            merged[key].update({k: _scalar(v, f"{key}.{k}") for k, v in value.items()})
-        elif key in ("load", "approach", "angle_deg", *_TANGENTIAL_KEYS, "direction_deg"):
-            merged[key] = _scalar(value, key)
-        elif key == "name":
-            if not isinstance(value, str):
-                raise _UsageError(f"scene file: name must be a string, got {_kind(value)}")
-            merged[key] = value
+            merged[key].update(value)
         else:
-            allowed = ", ".join(key for key, _, _ in SCENE_KEYS)
-            raise _UsageError(f"scene file: unknown key {_show(key)} (allowed: {allowed}, "
-                              "[body1], [body2])")
-    if "approach" in scene:
-        if "load" in scene:
-            raise _UsageError("scene file: give one of load and approach, not both")
+            merged[key] = value
+    if "approach" in given:
         merged.pop("load")
     return merged
 
@@ -321,41 +280,11 @@ def _copy(scene: dict) -> dict:
     return {k: (dict(v) if isinstance(v, dict) else v) for k, v in scene.items()}
 
 
-def _kind(value) -> str:
-    return {list: "an array", dict: "a table"}.get(type(value), type(value).__name__)
-
-
 def _printable(text: str) -> str:
     """``text`` with control and other non-printing characters written as escapes
     (``\\x1b``), so that a scene name cannot move the cursor or recolour a terminal."""
     return "".join(ch if ch.isprintable() else ch.encode("unicode_escape").decode("ascii")
                    for ch in text)
-
-
-def _show(value, limit: int = 80) -> str:
-    """repr(value), shortened; never an exception (deep nesting, huge integers)."""
-    try:
-        text = repr(value)
-    except (RecursionError, ValueError):
-        text = f"<{_kind(value)}>"
-    return text if len(text) <= limit else text[:limit - 3] + "..."
-
-
-def _scalar(value, name: str) -> float:
-    """A number from a scene file: an int or float, or a string that spells one ("inf")."""
-    if isinstance(value, bool) or not isinstance(value, (int, float, str)):
-        raise _UsageError(f"{name} must be a number, got {_kind(value)}: {_show(value)}")
-    if isinstance(value, str):
-        try:
-            return float(value)
-        except ValueError:
-            raise _UsageError(f"{name} must be a number, got {_show(value)}") from None
-    try:
-        return float(value)
-    except OverflowError:  # an integer beyond the largest double
-        digits = math.floor(math.log10(abs(value))) + 1
-        raise _UsageError(f"{name} must be a number a double can hold (|x| < 1.8e308), got "
-                          f"an integer of {digits} digits") from None
 
 
 def _scene(args) -> dict:
@@ -392,7 +321,7 @@ def _scene(args) -> dict:
 # --- solving -------------------------------------------------------------------------------
 
 def _body(spec: dict, name: str) -> Body:
-    values = {key: _scalar(spec[key], f"{name}.{key}") for key in _BODY_KEYS}
+    values = {key: float(spec[key]) for key in _BODY_KEYS}  # numbers: read_scene, argparse
     try:
         return Body(**values)
     except (TypeError, ValueError) as exc:
