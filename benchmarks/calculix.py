@@ -7,7 +7,7 @@ For every combination of mesh level, penalty factor (slope over E*/h0) and
 slave body: ``python -m fem_validation deck`` writes DIR/<run>/hertz.inp, ccx
 runs it (wall-clock time measured around the ccx process, OMP_NUM_THREADS =
 --threads), :func:`fem_validation.readers.calculix.read_calculix` reads the
-.frd and :func:`fem_validation.grade.grade` grades it with its default
+.frd and :func:`fem_validation.grading.contact.grade` grades it with its default
 tolerances.  Prints a markdown table (a, b, p0 from the p^2 fit; the profile
 RMS along both axes; the von Mises maxima on the axis of each body; force,
 nodes, Newton iterations, wall and CPU seconds of ccx) and writes DIR/calculix.json and
@@ -43,7 +43,7 @@ def _cpu() -> str:
 def run_one(scene: Path, out: Path, level: int, penalty: float, slave: int,
             threads: int) -> dict:
     from fem_validation.decks import read_scene
-    from fem_validation.grade import grade
+    from fem_validation.grading.contact import grade
     from fem_validation.readers.calculix import read_calculix
 
     deck = [sys.executable, "-m", "fem_validation", "deck", "--scene", str(scene), "--format",

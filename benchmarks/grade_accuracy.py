@@ -1,4 +1,4 @@
-"""How exactly the grader (fem_validation.grade) reads a, b, p0 off nodal pressures.
+"""How exactly the grader (fem_validation.grading.contact) reads a, b, p0 off nodal pressures.
 
 Exact Hertz pressure p0 sqrt(1 - x^2/a^2 - y^2/b^2), written out here, sampled on square
 grids (spacing h) of the whole contact or a quarter, graded against the same scene: the p^2
@@ -15,8 +15,8 @@ import math
 
 import numpy as np
 
-from fem_validation import grade as fg
-from fem_validation.result import ContactResult
+from fem_validation.grading import contact as fg
+from fem_validation.results.contact import ContactResult
 from fem_validation.scenes import crossed_30deg, equal_steel
 
 

@@ -24,7 +24,6 @@ from pathlib import Path
 
 import numpy as np
 import pytest
-
 from fem_extra import require
 
 require("skfem", "meshio", "matplotlib")
@@ -232,7 +231,7 @@ def test_deck_runs_in_ccx_and_passes_grade(tmp_path):
     """
     from fem_validation.__main__ import main
     from fem_validation.decks import read_scene
-    from fem_validation.grade import grade
+    from fem_validation.grading.contact import grade
     from fem_validation.readers.calculix import read_calculix
 
     scene_file = tmp_path / "unseen.toml"
@@ -267,8 +266,8 @@ def test_deck_runs_in_ccx_and_passes_grade(tmp_path):
 def test_units_must_agree_with_problem_json(tmp_path):
     """SI read of an mm deck would be 1000 times too large, and no force check sees it
     (pressure times area is the same in both): a contradiction with problem.json is refused."""
-    from fem_validation.readers.common import read_result
-    from fem_validation.result import ResultError
+    from fem_validation.readers import read_result
+    from fem_validation.results.contact import ResultError
 
     shutil.copy(DATA / "two_cubes.frd", tmp_path / "hertz.frd")
     (tmp_path / "problem.json").write_text('{"units": {"length": "mm", "force": "N", '
@@ -285,7 +284,7 @@ def test_reader_on_quadratic_tetrahedra():
     """Two unit cubes of 6 C3D10 each (tet_cubes.inp; ccx 2.20 wrote tet_cubes.frd), the
     upper pushed 0.01 mm onto the lower: the slave face is z = 1 mm, its 9 nodes (two
     6-node faces) carry the pressure force / area, and the force is the reaction."""
-    from fem_validation.grade import lumped_area
+    from fem_validation.fe.surface import lumped_area
     from fem_validation.readers.calculix import read_calculix
 
     r = read_calculix(DATA / "tet_cubes.frd", units="mm", symmetry="whole")

@@ -61,7 +61,7 @@ def scene(tmp_path_factory):
 
 @pytest.fixture(scope="module")
 def models(scene):
-    from fem_validation.decks import build_model
+    from fem_validation.decks.model import build_model
 
     s = scene[1]
     return build_model(s, 0, "quarter"), build_model(s, 0, "half")
@@ -109,7 +109,7 @@ def test_friction_peak_is_mindlins_circle_less_cerruti(models):
     """Mindlin for two identical spheres (closed form, written out independently):
     delta = 3 mu P (2 - nu) / (8 G a) [1 - (1 - Q/(mu P))^(2/3)], and each clamped block
     of depth H misses Q (3 - 2 nu) / (8 pi G H)."""
-    from fem_validation.decks import friction_path
+    from fem_validation.decks.inp import friction_path
 
     half = models[1]
     mu, ratio = 0.3, 0.8
@@ -180,7 +180,7 @@ def test_friction_deck_bad_input(scene, tmp_path, capsys, argv, message):
 #: Ramp increments of the slow test (unloading 2, reloading 3): ccx's frictional
 #: contact solves an unsymmetric system (SPOOLES) about 6 Newton iterations per increment,
 #: so the path is as short as a loop allows; the loop energy's trapezoid rule then errs by
-#: about -1/m^2 with m = 2 steps per branch (see fem_validation.grade_tangential).
+#: about -1/m^2 with m = 2 steps per branch (see fem_validation.grading.tangential).
 SLOW_INCREMENTS = 1
 #: What ccx 2.20 gave at level 0 with SLOW_INCREMENTS (882 s of ccx CPU on one thread,
 #: 52 Newton iterations); the bounds are 1.5 times these.  The loop energy is the
@@ -224,7 +224,7 @@ def check_run(out, sc, seconds=math.nan):
     """The slow test's checks on a finished run in ``out`` (callable on any such run)."""
     from dataclasses import replace
 
-    from fem_validation.grade_tangential import grade_tangential
+    from fem_validation.grading.tangential import grade_tangential
     from fem_validation.readers.calculix_friction import read_calculix_tangential
     from fem_validation.readers.frd import read_frd
 
@@ -268,7 +268,7 @@ def check_run(out, sc, seconds=math.nan):
 
 def test_grade_frd_bad_input(scene, tmp_path, capsys):
     """grade --tangential RUN.frd: options that the .frd answers, and a missing file."""
-    from fem_validation import grade_cli
+    from fem_validation.cli import grade as grade_cli
 
     frd = tmp_path / "hertz.frd"
     base = ["--tangential", str(frd), "--scene", str(scene[0]), "--out", str(tmp_path / "g")]

@@ -14,13 +14,12 @@ import math
 
 import numpy as np
 import pytest
-
 from fem_extra import require
 
 require("skfem", "meshio", "gmsh")
 
-from fem_validation.decks import build_model, read_scene, write_deck  # noqa: E402
-from fem_validation.decks.model import TET_FACES, face_nodes  # noqa: E402
+from fem_validation.decks import read_scene, write_deck  # noqa: E402
+from fem_validation.decks.model import TET_FACES, build_model, face_nodes  # noqa: E402
 from fem_validation.scenes import Scene  # noqa: E402
 
 pytest.importorskip("gmsh")

@@ -15,12 +15,16 @@ import textwrap
 from pathlib import Path
 
 import pytest
-
 from fem_extra import require
 
 import fem_validation
-import fem_validation.__main__ as fv_main
-from fem_validation import cli_common, decks, friction_cli, grade_cli
+import fem_validation.__main__ as fv_dispatch
+import fem_validation.cli.validate as fv_main
+from fem_validation import decks
+from fem_validation.cli import common as cli_common
+from fem_validation.cli import deck as deck_cli
+from fem_validation.cli import friction as friction_cli
+from fem_validation.cli import grade as grade_cli
 
 ROOT = Path(__file__).resolve().parents[1]
 
@@ -143,7 +147,7 @@ def test_import_needs_no_solver_and_every_public_name_resolves():
                  if m in sys.modules]
         print(heavy, fv.scene_from_toml.__module__, fv.ContactResult.__module__)
     """)], capture_output=True, text=True, env={"PYTHONPATH": str(ROOT), "PATH": "/usr/bin"})
-    assert done.stdout.split() == ["[]", "fem_validation.scenes", "fem_validation.result"], \
+    assert done.stdout.split() == ["[]", "fem_validation.scenes", "fem_validation.results.contact"], \
         done.stderr
     for name in fem_validation.__all__:  # today's names, each the object of its module
         value = getattr(fem_validation, name)
@@ -151,7 +155,7 @@ def test_import_needs_no_solver_and_every_public_name_resolves():
         if module and module.startswith("fem_validation."):
             assert getattr(sys.modules[module], name, value) is value, name
     assert set(fem_validation.__all__) <= set(dir(fem_validation))
-    assert fem_validation.grade.grade is not None  # the submodule, as before
+    assert fem_validation.grading.contact.grade is not None  # a submodule, as an attribute
     with pytest.raises(AttributeError, match="no attribute 'nonsense'"):
         fem_validation.nonsense  # noqa: B018
 
@@ -168,13 +172,13 @@ def _crash(exc):
 ENTRIES = [
     (["grade", "--force-approach", "C", "--scene", "S"], "fem_validation.scenes",
      "scene_from_toml", "fem_validation grade"),
-    (["deck", "--scene", "S", "--format", "calculix"], "fem_validation.decks", "read_scene",
+    (["deck", "--scene", "S", "--format", "calculix"], "fem_validation.cli.deck", "read_scene",
      "fem_validation deck"),
-    (["friction", "--alpha", "3"], "fem_validation.friction_cli", "_check",
+    (["friction", "--alpha", "3"], "fem_validation.cli.friction", "_check",
      "fem_validation friction"),
-    (["--alpha", "3", "--level", "0"], "fem_validation.__main__", "_conflicts",
+    (["--alpha", "3", "--level", "0"], "fem_validation.cli.validate", "_conflicts",
      "fem_validation"),
-    (["validate", "--alpha", "3"], "fem_validation.__main__", "_conflicts",
+    (["validate", "--alpha", "3"], "fem_validation.cli.validate", "_conflicts",
      "fem_validation validate"),
 ]
 
@@ -196,7 +200,7 @@ def test_every_entry_turns_any_exception_into_one_line(monkeypatch, capsys, tmp_
                                                        exc, status, words):
     monkeypatch.setattr(sys.modules[module], function, _crash(exc))
     argv = [str(scene) if a == "S" else str(curve) if a == "C" else a for a in argv]
-    assert fv_main.main([*argv, "--out", str(tmp_path / "o")]) == status
+    assert fv_dispatch.main([*argv, "--out", str(tmp_path / "o")]) == status
     line = one_line(capsys.readouterr().err)
     assert line.startswith(f"{name}: ") and words in line, line
 
@@ -206,7 +210,7 @@ def test_debug_shows_the_traceback(monkeypatch, capsys, tmp_path, scene, curve, 
                                    function, name):
     monkeypatch.setattr(sys.modules[module], function, _crash(ZeroDivisionError("x")))
     argv = [str(scene) if a == "S" else str(curve) if a == "C" else a for a in argv]
-    assert fv_main.main([*argv, "--out", str(tmp_path / "o"), "--debug"]) == 3
+    assert fv_dispatch.main([*argv, "--out", str(tmp_path / "o"), "--debug"]) == 3
     err = capsys.readouterr().err
     assert "Traceback (most recent call last)" in err and "in boom" in err
     assert err.strip().splitlines()[-1].startswith(f"{name}: internal error: ZeroDivisionError")
@@ -257,7 +261,7 @@ def test_hand_written_files_over_1_mib_are_refused(tmp_path, scene, curve, argv)
 def test_non_finite_numbers_are_refused_in_one_line(capsys, tmp_path, scene, curve, argv,
                                                      option):
     argv = [str(scene) if a == "S" else str(curve) if a == "C" else a for a in argv]
-    assert fv_main.main([*argv, "--out", str(tmp_path / "o")]) == 2
+    assert fv_dispatch.main([*argv, "--out", str(tmp_path / "o")]) == 2
     line = one_line(capsys.readouterr().err)
     assert option in line, line
     assert not (tmp_path / "o").exists()
@@ -269,7 +273,7 @@ def test_a_deck_does_not_write_into_a_folder_that_holds_files(capsys, tmp_path, 
     (out / "hertz.frd").write_text("an earlier run's result\n")
     argv = ["deck", "--scene", str(scene), "--format", "calculix", "--level", "0",
             "--out", str(out)]
-    assert fv_main.main(argv) == 2
+    assert fv_dispatch.main(argv) == 2
     line = one_line(capsys.readouterr().err)
     assert "not empty" in line and "hertz.frd" in line and "--overwrite" in line
     assert sorted(p.name for p in out.iterdir()) == ["hertz.frd"]
@@ -279,13 +283,13 @@ def test_a_deck_written_twice_into_one_folder_needs_overwrite(capsys, tmp_path, 
     require("gmsh", "skfem", "pyamg")
     argv = ["deck", "--scene", str(scene), "--format", "calculix", "--level", "0",
             "--out", str(tmp_path / "d")]
-    assert fv_main.main(argv) == 0
+    assert fv_dispatch.main(argv) == 0
     first = (tmp_path / "d" / "problem.json").read_text()
     capsys.readouterr()
-    assert fv_main.main([*argv, "--penalty-factor", "3"]) == 2
+    assert fv_dispatch.main([*argv, "--penalty-factor", "3"]) == 2
     assert "not empty" in one_line(capsys.readouterr().err)
     assert (tmp_path / "d" / "problem.json").read_text() == first  # untouched
-    assert fv_main.main([*argv, "--penalty-factor", "3", "--overwrite"]) == 0
+    assert fv_dispatch.main([*argv, "--penalty-factor", "3", "--overwrite"]) == 0
     assert (tmp_path / "d" / "problem.json").read_text() != first
 
 
@@ -300,7 +304,7 @@ def test_every_mode_refuses_a_folder_that_holds_other_files(capsys, tmp_path, sc
     out.mkdir()
     (out / "notes.txt").write_text("keep me\n")
     argv = [str(scene) if a == "S" else str(curve) if a == "C" else a for a in argv]
-    assert fv_main.main([*argv, "--out", str(out)]) == 2
+    assert fv_dispatch.main([*argv, "--out", str(out)]) == 2
     line = one_line(capsys.readouterr().err)
     assert "not empty" in line and "notes.txt" in line
     assert sorted(p.name for p in out.iterdir()) == ["notes.txt"]
@@ -311,8 +315,8 @@ def test_a_grade_replaces_an_earlier_grade(capsys, tmp_path, scene, curve):
     require("matplotlib", "skfem", "pyamg")
     argv = ["grade", "--force-approach", str(curve), "--scene", str(scene), "--out",
             str(tmp_path / "g")]
-    assert fv_main.main(argv) == 0
-    assert fv_main.main(argv) == 0
+    assert fv_dispatch.main(argv) == 0
+    assert fv_dispatch.main(argv) == 0
     assert sorted(p.name for p in (tmp_path / "g").iterdir()) == list(grade_cli.GRADE_FILES)
 
 
@@ -329,7 +333,7 @@ def test_a_deck_needs_a_positive_load(capsys, tmp_path):
     path.write_text(SPHERE.replace("load = 100.0", "load = 0"))
     with pytest.raises(ValueError, match=r"s\.toml.*load must be > 0"):
         decks.read_scene(path)
-    assert fv_main.main(["deck", "--scene", str(path), "--format", "calculix", "--out",
+    assert fv_dispatch.main(["deck", "--scene", str(path), "--format", "calculix", "--out",
                          str(tmp_path / "d")]) == 2
     assert "load must be > 0" in one_line(capsys.readouterr().err)
 
@@ -363,7 +367,7 @@ def test_negative_numbers_are_values_as_written():
 def test_a_negative_number_reaches_its_check(capsys, tmp_path, scene, curve, argv, message):
     """Not "expected one argument": the option's own check names the value."""
     argv = [str(scene) if a == "S" else str(curve) if a == "C" else a for a in argv]
-    assert fv_main.main([*argv, "--out", str(tmp_path / "o")]) == 2
+    assert fv_dispatch.main([*argv, "--out", str(tmp_path / "o")]) == 2
     line = one_line(capsys.readouterr().err)
     assert message in line and "expected one argument" not in line, line
 
@@ -373,7 +377,7 @@ def test_every_parser_accepts_debug():
     for parser in (friction_cli._parser(), fv_main._parser()):
         assert parser.parse_args(["--debug"]).debug is True
     p = cli_common.OneLineParser(prog="deck")
-    decks.add_arguments(p)
+    deck_cli.add_arguments(p)
     assert p.parse_args(["--debug", "--scene", "s", "--format", "msh", "--out", "o"]).debug
 
 
@@ -386,7 +390,7 @@ def test_collect_names_a_grade_json_that_is_not_a_runs(capsys, tmp_path, text):
         (run_dir / "grade.json").symlink_to("/dev/zero")
     else:
         (run_dir / "grade.json").write_text(text)
-    assert fv_main.main(["friction", "--collect", str(run_dir)]) == 2
+    assert fv_dispatch.main(["friction", "--collect", str(run_dir)]) == 2
     line = one_line(capsys.readouterr().err)
     assert line.startswith("fem_validation friction: error: --collect: ") and \
         "grade.json" in line, line

@@ -18,9 +18,10 @@ pytest.importorskip("pyamg")
 
 from skfem import MeshTet  # noqa: E402
 
-import fem_validation.contact_search as cs  # noqa: E402
-import fem_validation.curved as cv  # noqa: E402
-import fem_validation.curved_mesh as cm  # noqa: E402
+import fem_validation.fe.contact_search as cs  # noqa: E402
+import fem_validation.runs.curved as cvr  # noqa: E402
+import fem_validation.solvers.curved as cv  # noqa: E402
+import fem_validation.solvers.curved_mesh as cm  # noqa: E402
 
 # --- closest points on triangles -------------------------------------------------------
 
@@ -257,7 +258,7 @@ def _run(make, a_over_r, level):
     scene = make(a_over_r)
     mesh = cm.build_curved(scene, level)
     sol = cv.solve_curved(scene, mesh)
-    return scene, mesh, sol, cv.compare_curved(scene, mesh, sol)
+    return scene, mesh, sol, cvr.compare_curved(scene, mesh, sol)
 
 
 @pytest.fixture(scope="module")
@@ -271,7 +272,7 @@ def level_2():
     """Both scenes at a/R = 0.01 and 0.2, level 2 (about 30 s), with net errors."""
     rows = [_run(make, x, 2)[3] for make in (cm.sphere_plane, cm.ball_groove)
             for x in (0.01, 0.2)]
-    return cv.net_errors(rows)
+    return cvr.net_errors(rows)
 
 
 @pytest.mark.slow
@@ -297,7 +298,7 @@ def test_a_wrong_reference_fails_the_curved_comparison(sphere_small):
             return getattr(self._c, name)
 
     for scale in (1.01, 0.99):
-        wrong = cv.compare_curved(scene, mesh, sol,
+        wrong = cvr.compare_curved(scene, mesh, sol,
                                   hertz_at=lambda load, s=scale: Wrong(scene.hertz(load), s))
         assert abs(wrong.a_rel_err) > _tolerances(OBSERVED_SMALL)["a_rel_err"]
         assert wrong.b_rel_err == right.b_rel_err

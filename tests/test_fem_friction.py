@@ -1,4 +1,4 @@
-"""fem_validation.friction: Coulomb friction on the blocks against Cattaneo-Mindlin.
+"""fem_validation.solvers.friction: Coulomb friction on the blocks against Cattaneo-Mindlin.
 
 The pieces (the mirrored mesh, Cerruti's settlement, the path), invariants of the
 frictional solver on a coarse run (Coulomb's inequality at every pair, no gap change
@@ -24,10 +24,10 @@ for _module in ("skfem", "meshio", "gmsh", "pyamg", "matplotlib"):  # the fem ex
         pytest.importorskip(_module, reason=f"{_module} is not installed: the FEM validation "
                             "needs the fem extra (pip install -e '.[test,fem]')")
 
-import fem_validation.friction as fr  # noqa: E402
-import fem_validation.mesh as fvm  # noqa: E402
-from fem_validation.friction_cli import mesh_axis  # noqa: E402
-from fem_validation.grade_tangential import grade_tangential  # noqa: E402
+import fem_validation.solvers.friction as fr  # noqa: E402
+import fem_validation.solvers.mesh as fvm  # noqa: E402
+from fem_validation.grading.tangential import grade_tangential  # noqa: E402
+from fem_validation.runs.friction import mesh_axis  # noqa: E402
 from fem_validation.scenes import equal_steel  # noqa: E402
 
 MU = 0.3
@@ -195,8 +195,8 @@ def test_load_along_y_holds_the_same_invariants():
 def test_collect_joins_graded_runs(coarse, tmp_path, capsys):
     """--collect builds the table from a run directory's grade.json, the values the grade
     holds, printed as percentages."""
-    from fem_validation.friction_cli import main
-    from fem_validation.grade_tangential import write_grade
+    from fem_validation.cli.friction import main
+    from fem_validation.reports.tangential import write_grade
 
     scene, mesh, sol, result = coarse
     g = grade_tangential(result, scene)

@@ -35,12 +35,16 @@ from skfem import Basis, BilinearForm, ElementTetP1, ElementVector, MeshTet, asm
 from skfem.helpers import ddot, sym_grad, trace  # noqa: E402
 
 import fem_validation as fv  # noqa: E402
-import fem_validation.compare as fvc  # noqa: E402
-import fem_validation.elasticity as fve  # noqa: E402
-import fem_validation.mesh as fvm  # noqa: E402
-import fem_validation.output as fvo  # noqa: E402
-import fem_validation.solve as fvs  # noqa: E402
-import fem_validation.study as fvst  # noqa: E402
+import fem_validation.fe.elasticity as fve  # noqa: E402
+import fem_validation.fe.surface as fvsurf  # noqa: E402
+import fem_validation.grading.contact as fvg  # noqa: E402
+import fem_validation.reports.blocks as fvo  # noqa: E402
+import fem_validation.runs.study as fvst  # noqa: E402
+import fem_validation.runs.validate as fvrun  # noqa: E402
+import fem_validation.solvers.blocks as fvc  # noqa: E402
+import fem_validation.solvers.mesh as fvm  # noqa: E402
+import fem_validation.solvers.solve as fvs  # noqa: E402
+import fem_validation.solvers.vtu as fvvtu  # noqa: E402
 import hertz  # noqa: E402
 
 
@@ -50,7 +54,7 @@ def coarse():
     scene = fv.equal_steel(3)
     mesh = fvm.build(scene, 0)
     sol = fvs.solve_contact(scene, mesh)
-    return scene, mesh, sol, fvc.compare_with_hertz(scene, mesh, sol, 0, 0.0)
+    return scene, mesh, sol, fvrun.compare_with_hertz(scene, mesh, sol, 0, 0.0)
 
 
 @pytest.fixture(scope="module")
@@ -148,15 +152,15 @@ def test_patch_recovery_falls_back_to_the_average_on_thin_patches():
 def test_peak_of_sampled_curve():
     z = np.linspace(0.0, 2.0, 21)  # h = 0.1, the maximum 0.57 between two samples
     f = 1.0 - (z - 0.57) ** 2 + 0.1 * (z - 0.57) ** 3
-    top = fvc.peak(z, f)
+    top = fvg.peak(z, f)
     assert top["fitted"]
     assert abs(top["depth"] - 0.57) < 3e-3 and abs(top["value"] - 1.0) < 2e-4
     # the largest sample is off by ~h/2 and low by ~(h/2)**2
     assert abs(top["node_depth"] - 0.57) > 0.02 and top["node_value"] < 1 - 5e-4
-    edge = fvc.peak(z, z**3)  # largest at the last sample, convex: no vertex to take
+    edge = fvg.peak(z, z**3)  # largest at the last sample, convex: no vertex to take
     assert not edge["fitted"] and (edge["value"], edge["depth"]) == (8.0, 2.0)
     with pytest.raises(ValueError, match="^points must"):
-        fvc.peak(z[:3], f[:3], points=5)
+        fvg.peak(z[:3], f[:3], points=5)
 
 
 def test_interpolation_in_a_tetrahedral_mesh_is_exact_for_linear_fields():
@@ -316,10 +320,10 @@ def test_post_processing_recovers_an_exact_hertz_field():
     u = xy @ np.array([[math.cos(theta), -math.sin(theta)], [math.sin(theta), math.cos(theta)]])
     r2 = (u[:, 0] / a) ** 2 + (u[:, 1] / b) ** 2
     p = p0 * np.sqrt(np.clip(1 - r2, 0, None))
-    fit = fvc.fit_ellipse(xy, p)
+    fit = fvg.fit_ellipse(xy, p)
     assert (fit["p0"], fit["a"], fit["b"]) == pytest.approx((p0, a, b), rel=1e-10)
     assert fit["major_axis_angle_deg"] == pytest.approx(-75, abs=1e-8)
-    mom = fvc.moment_ellipse(xy, p * (4.4**2 / len(p)), quarter=False)
+    mom = fvg.moment_ellipse(xy, p * (4.4**2 / len(p)), quarter=False)
     assert (mom["a"], mom["b"]) == pytest.approx((a, b), rel=0.01)
     assert mom["major_axis_angle_deg"] == pytest.approx(-75, abs=0.5)
 
@@ -339,16 +343,16 @@ def test_edge_of_the_active_set_on_a_grid():
     c, s = math.cos(theta), math.sin(theta)
     u, v = xy @ np.array([c, s]), xy @ np.array([-s, c])
     active = (u / a) ** 2 + (v / b) ** 2 < 1
-    edge = fvc.edge_ellipse(fvc.active_edge_points(xy, tri, active), quarter=False)
+    edge = fvg.edge_ellipse(fvg.active_edge_points(xy, tri, active), quarter=False)
     assert (edge["a"], edge["b"]) == pytest.approx((a, b), rel=2e-3)
     assert edge["major_axis_angle_deg"] == pytest.approx(30, abs=0.5)
     quarter = np.all(xy >= 0, axis=1)
     keep = np.all(quarter[tri], axis=1)
     aligned = (xy[:, 0] / a) ** 2 + (xy[:, 1] / b) ** 2 < 1
-    q = fvc.edge_ellipse(fvc.active_edge_points(xy, tri[keep], aligned), quarter=True)
+    q = fvg.edge_ellipse(fvg.active_edge_points(xy, tri[keep], aligned), quarter=True)
     assert (q["a"], q["b"]) == pytest.approx((a, b), rel=3e-3)
     with pytest.raises(ValueError, match="^points must"):
-        fvc.edge_ellipse(np.zeros((2, 2)), quarter=True)
+        fvg.edge_ellipse(np.zeros((2, 2)), quarter=True)
 
 
 def test_interpolation_on_the_face_is_exact_for_linear_fields():
@@ -356,7 +360,7 @@ def test_interpolation_on_the_face_is_exact_for_linear_fields():
     tri = np.array([[0, 1, 2], [1, 3, 2]])
     values = 2 + 3 * xy[:, 0] - xy[:, 1]
     pts = np.array([[0.25, 0.25], [0.9, 0.8], [2.0, 2.0]])
-    out = fvc.interpolate_on_face(xy, tri, values, pts)
+    out = fvg.interpolate_on_face(xy, tri, values, pts)
     np.testing.assert_allclose(out[:2], 2 + 3 * pts[:2, 0] - pts[:2, 1], rtol=1e-14)
     assert np.isnan(out[2])
 
@@ -371,7 +375,7 @@ def test_coarse_end_to_end_is_roughly_hertz(coarse):
     assert abs(r.approach_rel_err) < 0.1
     # stresses below the surface (observed: von Mises -2.7% at -10% depth, RMS <= 1.8%)
     assert abs(r.von_mises_rel_err) < 0.06 and abs(r.z_von_mises_rel_err) < 0.2
-    for name in fvc.FIELD_SETS:
+    for name in fvg.FIELD_SETS:
         assert getattr(r, f"stress_rms_{name}") < 0.04, name
     assert 0.8 < sol.force / scene.load < 1.2
     assert r.max_penetration_over_delta < 0.01
@@ -404,7 +408,7 @@ def test_check_names_the_missed_targets(coarse):
 
 def test_vtu_round_trip_and_reports(coarse, tmp_path):
     scene, mesh, sol, r = coarse
-    paths = fvo.write_vtu(scene, mesh, sol, tmp_path)
+    paths = fvvtu.write_vtu(scene, mesh, sol, tmp_path)
     for i, path in enumerate(paths):
         back = meshio.read(path)
         body = mesh.bodies[i]
@@ -526,7 +530,7 @@ def default_level_alpha_1():
     scene = fv.equal_steel(1)
     mesh = fvm.build(scene)
     sol = fvs.solve_contact(scene, mesh)
-    return scene, mesh, sol, fvc.compare_with_hertz(scene, mesh, sol, fvm.DEFAULT_LEVEL, 0.0)
+    return scene, mesh, sol, fvrun.compare_with_hertz(scene, mesh, sol, fvm.DEFAULT_LEVEL, 0.0)
 
 
 @pytest.mark.slow
@@ -555,7 +559,7 @@ def test_a_wrong_reference_fails(default_level_alpha_1):
             return self._c.p0 * np.sqrt(np.clip(1 - r2, 0, None))
 
     for scale in (1.01, 1.015, 0.985):
-        wrong = fvc.compare_with_hertz(scene, mesh, sol, fvm.DEFAULT_LEVEL, 0.0,
+        wrong = fvrun.compare_with_hertz(scene, mesh, sol, fvm.DEFAULT_LEVEL, 0.0,
                                        hertz_at=lambda load, s=scale: Wrong(scene.hertz(load),
                                                                             s))
         assert any("a_rel_err" in m for m in fv.check(wrong, _tolerances(OBSERVED[1])))
@@ -586,7 +590,7 @@ def test_a_wrong_reference_stress_fails(default_level_alpha_1):
                                    z_von_mises=self._d * exact.z_von_mises)
 
     def compared(scale, depth_scale=1.0):
-        return fvc.compare_with_hertz(
+        return fvrun.compare_with_hertz(
             scene, mesh, sol, fvm.DEFAULT_LEVEL, 0.0,
             hertz_at=lambda load: Scaled(scene.hertz(load), scale, depth_scale))
 
@@ -627,11 +631,11 @@ def test_axis_stress_at_the_default_level(default_level_alpha_1):
         assert np.abs(stress[sel, 2, 2] - exact).max() < 1.5 * SZZ_RECOVERED[i] * c.p0
         m, u, body = mesh.bodies[i], (sol.u1, sol.u2)[i], (scene.body1, scene.body2)[i]
         average = fve.nodal_average(m.p, m.t, fve.element_stress(m.p, m.t, u, body.E, body.nu))
-        rot = fvc.ellipse_rotation(c.major_axis_angle, i + 1)
+        rot = fvsurf.ellipse_rotation(c.major_axis_angle, i + 1)
         average = np.einsum("ij,njk,lk->nil", rot, average[mesh.axis[i]], rot)
         assert np.abs(average[sel, 2, 2] - exact).max() == pytest.approx(
             SZZ_AVERAGE[i] * c.p0, rel=0.05)
-        top = fvc.peak(depth, fve.von_mises(average))
+        top = fvg.peak(depth, fve.von_mises(average))
         average_depth_errors.append(top["depth"] / c.subsurface(i + 1).z_von_mises - 1)
     assert max(abs(e) for e in average_depth_errors) > 0.03  # what the recovery removes
 
@@ -661,7 +665,7 @@ def test_orientation_of_the_crossed_scene():
 
 @pytest.mark.slow
 def test_refinement_study_converges(tmp_path):
-    from fem_validation.study import refinement_study
+    from fem_validation.runs.study import refinement_study
 
     study = refinement_study(fv.equal_steel(3), [2, 3, 4], tmp_path)
     assert json.loads((tmp_path / "study.json").read_text())["rates"] == study["rates"]

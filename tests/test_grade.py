@@ -1,4 +1,4 @@
-"""The one grader (fem_validation.grade), its result type, readers and command line.
+"""The one grader (fem_validation.grading.contact), its result type, readers and command line.
 
 References are independent of the grader: Hertz's pressure p0 sqrt(1 - x^2/a^2 - y^2/b^2)
 evaluated on meshes made here, Hertz's law F = (4/3) E* sqrt(R) delta^(3/2) in closed form
@@ -20,10 +20,10 @@ import pytest
 meshio = pytest.importorskip("meshio", reason="needs the fem extra (meshio)")
 pytest.importorskip("scipy")
 
-import fem_validation.grade as fg  # noqa: E402
+import fem_validation.grading.contact as fg  # noqa: E402
 import hertz  # noqa: E402
-from fem_validation.readers.common import read_result  # noqa: E402
-from fem_validation.result import (  # noqa: E402
+from fem_validation.readers import read_result  # noqa: E402
+from fem_validation.results.contact import (  # noqa: E402
     BodyStress,
     ContactFrame,
     ContactResult,

@@ -1,4 +1,4 @@
-"""The tangential grader (fem_validation.grade_tangential), its result type, reader and CLI.
+"""The tangential grader (fem_validation.grading.tangential), its result type, reader and CLI.
 
 The synthetic results are written out here from the closed forms, independently of the
 grader: Hertz's pressure, Cattaneo-Mindlin's traction mu p0 [sqrt(1 - r^2) - s sqrt(1 -
@@ -29,13 +29,14 @@ from fem_extra import require  # noqa: E402
 
 require("skfem", "meshio", "matplotlib")
 
-import fem_validation.grade_tangential as gt  # noqa: E402
+import fem_validation.grading.tangential as gt  # noqa: E402
+import fem_validation.reports.tangential as rt  # noqa: E402
 import hertz  # noqa: E402
-from fem_validation import grade_cli  # noqa: E402
+from fem_validation.cli import grade as grade_cli  # noqa: E402
 from fem_validation.readers.tangential_csv import read_tangential  # noqa: E402
-from fem_validation.result import ContactFrame, ResultError  # noqa: E402
+from fem_validation.results.contact import ContactFrame, ResultError  # noqa: E402
+from fem_validation.results.tangential import TangentialResult, path_reversals  # noqa: E402
 from fem_validation.scenes import Scene, crossed_30deg, equal_steel  # noqa: E402
-from fem_validation.tangential_result import TangentialResult, path_reversals  # noqa: E402
 
 ROOT = Path(__file__).resolve().parents[1]
 MU = 0.3
@@ -445,7 +446,7 @@ def test_the_report_files(tmp_path):
     _, r = synthetic(scene, symmetry="quarter", steps=8, h_over_b=0.08, mu_data=MU * 1.02,
                      q_ratio=0.9)
     g = gt.grade_tangential(r, scene)
-    paths = gt.write_grade(g, tmp_path, "python -m fem_validation grade ...")
+    paths = rt.write_grade(g, tmp_path, "python -m fem_validation grade ...")
     row = json.loads(paths[0].read_text(), parse_constant=lambda c: pytest.fail(c))
     assert row["passed"] is False and row["kind"] == "tangential"
     assert {c["name"] for c in row["checks"]} == set(gt.METRICS)
@@ -510,7 +511,7 @@ def test_docstring_examples():
     """The modules' examples run (pytest's --doctest-modules covers hertz/ only)."""
     import doctest
 
-    import fem_validation.tangential_result as tr
+    import fem_validation.results.tangential as tr
 
     for module in (gt, tr):
         failures, tried = doctest.testmod(module, optionflags=doctest.ELLIPSIS)

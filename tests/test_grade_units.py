@@ -21,13 +21,14 @@ import pytest
 
 pytest.importorskip("scipy")
 
-import fem_validation.grade as fg  # noqa: E402
-import fem_validation.grade_tangential as gt  # noqa: E402
+import fem_validation.grading.contact as fg  # noqa: E402
+import fem_validation.grading.tangential as gt  # noqa: E402
+import fem_validation.reports.tangential as rt  # noqa: E402
 import hertz  # noqa: E402
-from fem_validation import output  # noqa: E402
-from fem_validation.result import ContactResult, ResultError  # noqa: E402
+from fem_validation.reports import grade as grade_files  # noqa: E402
+from fem_validation.results.contact import ContactResult, ResultError  # noqa: E402
+from fem_validation.results.tangential import TangentialResult  # noqa: E402
 from fem_validation.scenes import Scene, equal_steel  # noqa: E402
-from fem_validation.tangential_result import TangentialResult  # noqa: E402
 
 ROOT = Path(__file__).resolve().parents[1]
 BALL = Scene("ball on plane", hertz.Body.sphere(0.01, E=210e9, nu=0.3),
@@ -101,7 +102,7 @@ def test_a_right_or_two_percent_off_result_gets_no_hint(tmp_path, scale):
     assert g.summary in ("PASSED", "FAILED: p0_rel_err")
     g = fg.grade(hertz_result(length=scale), BALL)
     assert g.hint == ""
-    output.write_grade(g, tmp_path)
+    grade_files.write_grade(g, tmp_path)
     assert "units?" not in (tmp_path / "grade.md").read_text()
 
 
@@ -112,7 +113,7 @@ def test_pressure_1000x_is_graded_with_the_hint(tmp_path):
     assert not g.passed and g.check("p0_rel_err").status == "fail"
     assert "pressures 1000x too large" in g.hint
     assert g.hint in g.summary and g.summary.startswith("FAILED: p0_rel_err")
-    output.write_grade(g, tmp_path)
+    grade_files.write_grade(g, tmp_path)
     assert json.loads((tmp_path / "grade.json").read_text())["hint"] == g.hint
     assert g.hint in (tmp_path / "grade.md").read_text()
 
@@ -229,5 +230,5 @@ def test_tangential_displacement_1000x_is_graded_with_the_hint(tmp_path):
     assert not g.passed
     assert "tangential displacement at the first reversal 1000x" in g.hint
     assert g.hint in g.summary
-    gt.write_grade(g, tmp_path)
+    rt.write_grade(g, tmp_path)
     assert g.hint in (tmp_path / "grade.md").read_text()

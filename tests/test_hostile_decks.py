@@ -24,12 +24,14 @@ import hertz
 pytest.importorskip("gmsh")
 pytest.importorskip("skfem")
 
-from fem_validation import curved_mesh, mesh  # noqa: E402
-from fem_validation.decks import build_model  # noqa: E402
 from fem_validation.decks.inp import write_inp  # noqa: E402
 from fem_validation.decks.meshes import write_mesh, write_problem  # noqa: E402
-from fem_validation.decks.model import check_scene  # noqa: E402
+from fem_validation.decks.model import (  # noqa: E402
+    build_model,  # noqa: E402
+    check_scene,  # noqa: E402
+)
 from fem_validation.scenes import Scene, equal_steel  # noqa: E402
+from fem_validation.solvers import curved_mesh, mesh  # noqa: E402
 
 E, NU, R = 200e9, 0.3, 0.01
 BALL = hertz.Body(R, R, E, NU)

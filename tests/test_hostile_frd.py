@@ -19,9 +19,9 @@ import numpy as np
 import pytest
 
 from fem_validation.memory import peak_mb, reset_peak
+from fem_validation.readers import read_result
 from fem_validation.readers.calculix import read_calculix
 from fem_validation.readers.calculix_friction import read_calculix_tangential
-from fem_validation.readers.common import read_result
 from fem_validation.readers.frd import FrdFormatError, read_frd
 
 DATA = Path(__file__).parent / "data" / "calculix"
@@ -90,7 +90,7 @@ def test_documented_grade_command_grades_a_calculix_run(tmp_path, with_problem):
     command grades exactly as the documented Python route, grade(read_calculix(...), ...).
     """
     from fem_validation.decks import read_scene
-    from fem_validation.grade import grade
+    from fem_validation.grading.contact import grade
 
     frd = _run(tmp_path, problem=PROBLEM if with_problem else None)
     scene = tmp_path / "scene.toml"

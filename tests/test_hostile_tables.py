@@ -18,12 +18,12 @@ import pytest
 meshio = pytest.importorskip("meshio", reason="needs the fem extra (meshio)")
 pytest.importorskip("scipy")
 
-from fem_validation.readers import table as table_module  # noqa: E402
-from fem_validation.readers.common import read_result  # noqa: E402
-from fem_validation.readers.table import read_force_approach  # noqa: E402
+from fem_validation.readers import csv_file as table_module  # noqa: E402
+from fem_validation.readers import read_result  # noqa: E402
+from fem_validation.readers.csv_file import read_force_approach  # noqa: E402
 from fem_validation.readers.tangential_csv import read_history, read_tangential  # noqa: E402
-from fem_validation.result import ContactFrame, ContactResult, ResultError  # noqa: E402
-from fem_validation.tangential_result import TangentialResult  # noqa: E402
+from fem_validation.results.contact import ContactFrame, ContactResult, ResultError  # noqa: E402
+from fem_validation.results.tangential import TangentialResult  # noqa: E402
 
 #: A quarter of a Hertz contact of radius A [m] with peak P0 [Pa] on a 9 x 9 grid: the
 #: pressure p0 sqrt(1 - r^2/a^2) written out here, not taken from the package.

@@ -11,6 +11,7 @@ import shutil
 import subprocess
 import sys
 import sysconfig
+from pathlib import Path
 
 import pytest
 from rebuild import ROOT, assert_same_bits, build
@@ -91,6 +92,20 @@ def test_the_wheel_carries_the_geometry_and_no_c_sources(tmp_path):
     for package in ("hertz", "fem_validation"):
         for module in (ROOT / package).rglob("*.py"):
             assert (tmp_path / module.relative_to(ROOT)).is_file(), module
+    # every subpackage imports from the build, and finds its geometry there
+    subpackages = sorted(".".join(p.parent.relative_to(tmp_path).parts)
+                         for p in (tmp_path / "fem_validation").rglob("__init__.py"))
+    assert {"fem_validation.cli", "fem_validation.grading", "fem_validation.readers",
+            "fem_validation.reports", "fem_validation.results", "fem_validation.runs",
+            "fem_validation.solvers"} <= set(subpackages)
+    code = ("import importlib, sys; import fem_validation.solvers.mesh as m; "
+            f"[importlib.import_module(n) for n in {subpackages!r}]; "
+            "print(m.geometry_file('blocks.geo'))")
+    done = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True,
+                          cwd=tmp_path, env={**os.environ, "PYTHONPATH": str(tmp_path)})
+    assert done.returncode == 0, done.stderr
+    assert Path(done.stdout.strip()).resolve() == (tmp_path / "fem_validation" / "meshes" /
+                                                   "blocks.geo").resolve()
 
 
 class FakeCompiler:

@@ -86,7 +86,7 @@ def friction_path(model: DeckModel, mu: float, ratio: float = 0.8,
     stick_slope_factor : float
         Stick slope over the normal penalty slope, > 0.  Default 1: the
         tangential penalty equals the normal one (10 E*/h0), as in
-        :mod:`fem_validation.friction`; it adds an elastic slip q/lambda, about
+        :mod:`fem_validation.solvers.friction`; it adds an elastic slip q/lambda, about
         1% of h0 at q = mu p0 / 10 E* scale, far below Mindlin's displacement.
 
     Raises
@@ -94,7 +94,8 @@ def friction_path(model: DeckModel, mu: float, ratio: float = 0.8,
     ValueError
         Naming the parameter and the value.
     """
-    from ..friction import cerruti_settlement, hertz_direction
+    from ..halfspace import cerruti_settlement
+    from ..solvers.friction import hertz_direction
 
     for name, value in (("mu", mu), ("stick_slope_factor", stick_slope_factor)):
         if not (isinstance(value, int | float) and math.isfinite(value) and value > 0):

@@ -2,12 +2,12 @@
 
 Two geometries:
 
-* **true curved bodies** (gmsh OpenCASCADE, :mod:`fem_validation.curved_mesh`) when
+* **true curved bodies** (gmsh OpenCASCADE, :mod:`fem_validation.solvers.curved_mesh`) when
   the scene is a ball on a flat block or in a groove along x (one material):
   the quarter of a hemisphere on a block, the ball's equator moved down
   rigidly, the block's bottom clamped;
 * **paraboloid-faced blocks** for every other scene: the two blocks of
-  :mod:`fem_validation.mesh` (structured grid around the contact), whose flat
+  :mod:`fem_validation.solvers.mesh` (structured grid around the contact), whose flat
   faces at z = 0 are then mapped onto the bodies' paraboloids,
   z -> z + h1(x, y) (1 - z/H) in body 1 and z -> z - h2(x, y) (1 + z/H) in
   body 2 (h_i = x_i**2 / (2 R_ix) + y_i**2 / (2 R_iy) in body i's frame), so
@@ -209,7 +209,7 @@ def paraboloid_height(body: hertz.Body, x: np.ndarray, y: np.ndarray) -> np.ndar
 
 
 def _min_a_over_r() -> float:
-    from ..curved_mesh import MIN_A_OVER_R
+    from ..solvers.curved_mesh import MIN_A_OVER_R
 
     return MIN_A_OVER_R
 
@@ -284,9 +284,15 @@ def curved_scene_for(scene: Scene):
     True geometry needs: body 1 a sphere (Rx = Ry > 0), body 2 flat or a groove
     (Rx infinite, Ry = -R_g with R_g > R), one material, and a semi-axis at the
     target load between 1e-5 and 0.5 times the ball's radius
-    (:data:`fem_validation.curved_mesh.MIN_A_OVER_R`, ``MAX_A_OVER_R``).
+    (:data:`fem_validation.solvers.curved_mesh.MIN_A_OVER_R`, ``MAX_A_OVER_R``).
     """
-    from ..curved_mesh import MAX_A_OVER_R, MIN_A_OVER_R, CurvedScene, ball_groove, sphere_plane
+    from ..solvers.curved_mesh import (
+        MAX_A_OVER_R,
+        MIN_A_OVER_R,
+        CurvedScene,
+        ball_groove,
+        sphere_plane,
+    )
 
     b1, b2 = scene.body1, scene.body2
     if not (math.isfinite(b1.Rx) and b1.Rx == b1.Ry and b1.Rx > 0):
@@ -317,8 +323,8 @@ def build_curved_model(scene: Scene, level: int, slave_body: int = 1,
         Before meshing: the scene is not a ball on a plane or in a groove, or
         :func:`check_scene` refuses it, or an option is out of range.
     """
-    from ..curved import imposed_approach
-    from ..curved_mesh import build_curved
+    from ..solvers.curved import imposed_approach
+    from ..solvers.curved_mesh import build_curved
 
     _check_options(slave_body, penalty_factor)
     check_scene(scene)
@@ -413,11 +419,11 @@ def build_block_model(scene: Scene, level: int, quarter: bool | None = None,
     ------
     ValueError
         Before meshing: :func:`block_extent` refuses the contact's size, the mesh
-        would have more vertices than :data:`fem_validation.mesh.MAX_MESH_NODES`,
+        would have more vertices than :data:`fem_validation.solvers.mesh.MAX_MESH_NODES`,
         or an option is out of range.
     """
-    from ..mesh import build
-    from ..solve import imposed_approach
+    from ..solvers.mesh import build
+    from ..solvers.solve import imposed_approach
 
     _check_options(slave_body, penalty_factor)
     if quarter is None:
@@ -467,7 +473,7 @@ def build_block_model(scene: Scene, level: int, quarter: bool | None = None,
 
 
 def _level_scale(level: int) -> float:
-    from ..mesh import LEVEL_SCALE
+    from ..solvers.mesh import LEVEL_SCALE
 
     if level not in LEVEL_SCALE:
         raise ValueError(f"level must be one of {sorted(LEVEL_SCALE)}, got {level!r}")
@@ -570,8 +576,8 @@ def build_model(scene: Scene, level: int, model: str = "auto", slave_body: int =
     scene : Scene
     level : int
         Mesh level (0 coarse): the curved levels 0-4 of
-        :mod:`fem_validation.curved_mesh`, or the block levels 0-5 of
-        :mod:`fem_validation.mesh`.
+        :mod:`fem_validation.solvers.curved_mesh`, or the block levels 0-5 of
+        :mod:`fem_validation.solvers.mesh`.
     model : {"auto", "quarter", "half", "whole"}
         Quarter, half (y >= 0, :func:`half_model`) or whole model; "auto" takes
         the quarter model where the scene allows it.  True curved bodies are
@@ -587,7 +593,7 @@ def build_model(scene: Scene, level: int, model: str = "auto", slave_body: int =
         Before gmsh runs: a target load that is not a finite number > 0, a
         contact outside 1e-5 <= a/R_min <= 0.0375 (0.5 for a ball on a plane or
         in a groove: :func:`check_scene`, :func:`block_extent`), a mesh of more
-        than :data:`fem_validation.mesh.MAX_MESH_NODES` vertices, or an option
+        than :data:`fem_validation.solvers.mesh.MAX_MESH_NODES` vertices, or an option
         out of range.
     """
     if model not in ("auto", "quarter", "half", "whole"):

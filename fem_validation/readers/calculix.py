@@ -1,4 +1,4 @@
-"""A CalculiX result (.frd, with its .inp) -> :class:`~fem_validation.result.ContactResult`.
+"""A CalculiX result (.frd, with its .inp) -> :class:`~fem_validation.results.contact.ContactResult`.
 
 What is read, and from where:
 
@@ -41,7 +41,13 @@ from pathlib import Path
 import numpy as np
 
 from ..limits import read_small_text
-from ..result import BodyStress, ContactFrame, ContactResult, ResultError, stress_from_voigt
+from ..results.contact import (
+    BodyStress,
+    ContactFrame,
+    ContactResult,
+    ResultError,
+    stress_from_voigt,
+)
 from .common import resolve_frame
 from .frd import FrdFile, FrdResult, read_frd
 
@@ -597,7 +603,7 @@ def read_calculix(path, inp=None, units: str | None = None, symmetry: str | None
 
 def _approach(info: Problem, force: float, to_m: float, to_pa: float) -> float | None:
     """The prescribed approach plus the far faces' Boussinesq settlement at ``force`` [m]."""
-    from ..solve import boussinesq_settlement
+    from ..halfspace import boussinesq_settlement
 
     if info.approach is None or info.far_face_depths is None:
         return None
@@ -607,3 +613,21 @@ def _approach(info: Problem, force: float, to_m: float, to_pa: float) -> float |
     for (E, nu), depth in zip(materials, info.far_face_depths, strict=True):
         total += boussinesq_settlement(force, E * to_pa, nu, depth * to_m)
     return total
+
+
+def read_result(path, *, units: str = "SI", symmetry: str | None = None,
+                force: float | None = None, frame=None, fields: dict | None = None):
+    """A CalculiX .frd as a :class:`~fem_validation.results.contact.ContactResult` (the interface of
+    :func:`fem_validation.readers.read_result`).
+
+    See :func:`fem_validation.readers.calculix.read_calculix`; ``fields`` may name
+    the pressure component (``{"pressure": "CPRESS"}``).  Where the deck's
+    problem.json lies beside the file, its units must agree with ``units``.
+    """
+    fields = dict(fields or {})
+    unknown = set(fields) - {"pressure"}
+    if unknown:
+        raise ResultError(f"{path}: a .frd takes only the field 'pressure' (a component "
+                          f"name such as CPRESS), got {', '.join(sorted(unknown))}")
+    return read_calculix(path, units=units, symmetry=symmetry, force=force, frame=frame,
+                         pressure_name=fields.get("pressure", "CPRESS"))

@@ -10,7 +10,7 @@ where:
   of the normal step (tangential displacement 0) on.  ``displacement`` is the
   mean D1 of MOVED plus the Cerruti settlement Q (3 - 2 nu)/(8 pi G H) of each
   clamped block of depth H at the increment's force (the far faces of finite
-  blocks do not show it; :func:`fem_validation.friction.cerruti_settlement`),
+  blocks do not show it; :func:`fem_validation.halfspace.cerruti_settlement`),
   depths and materials from problem.json; ``force`` is the summed reaction F1
   of MOVED times the symmetry's multiplicity: the force the support exerts on
   body 1 along x, which body 1 passes on to body 2 through the contact (its
@@ -39,8 +39,8 @@ from pathlib import Path
 
 import numpy as np
 
-from ..result import ContactFrame, ResultError
-from ..tangential_result import TangentialResult, path_reversals
+from ..results.contact import ContactFrame, ResultError
+from ..results.tangential import TangentialResult, path_reversals
 from .calculix import (
     UNIT_FACTORS,
     _keyword_blocks,
@@ -154,7 +154,7 @@ def read_calculix_tangential(path, inp=None, problem=None, units: str | None = N
     ResultError
         Naming the file and what is missing or contradictory.
     """
-    from ..friction import cerruti_settlement
+    from ..halfspace import cerruti_settlement
 
     path = Path(path)
     source = str(path)

@@ -13,7 +13,7 @@ Conventions (every reader follows them):
 * ``symmetry``: "whole", "half", "quarter", or None to detect it: a model that
   holds only x >= 0 and y >= 0 of the contact frame, with its largest pressure
   next to the origin, is a quarter model; only x >= 0 (or y >= 0), a half model.
-* ``frame``: a :class:`~fem_validation.result.ContactFrame`, or None to find one
+* ``frame``: a :class:`~fem_validation.results.contact.ContactFrame`, or None to find one
   (:func:`find_frame`), or a dict with some of ``origin``, ``normal``, ``x_axis``
   (SI) given and the rest found.
 
@@ -24,11 +24,9 @@ fields=...)`` (the same keywords as :func:`read_result`).
 
 from __future__ import annotations
 
-from pathlib import Path
-
 import numpy as np
 
-from ..result import MULTIPLICITY, ContactFrame, ContactResult, ResultError, surface_points
+from ..results.contact import MULTIPLICITY, ContactFrame, ContactResult, ResultError, surface_points
 
 #: Units of a file -> (metres per length unit, newtons per force unit, pascals per
 #: pressure unit).
@@ -173,55 +171,17 @@ def finish(points, pressure, normal_force, force, symmetry, frame, triangles=Non
                          details=dict(details or {}))
 
 
-def read_result(path, *, units: str | None = None, symmetry: str | None = None,
-                force: float | None = None, frame: ContactFrame | dict | None = None,
-                fields: dict | None = None) -> ContactResult:
-    """A ContactResult from a file, by its extension: ``.csv`` (:mod:`.table`), ``.frd``
-    (CalculiX, :mod:`.frd`), anything else through meshio (:mod:`.meshes`).
 
-    Parameters
-    ----------
-    path : path
-    units : {"SI", "m", "mm"}, optional
-        Default: a CSV's ``# units`` line, else the units its columns name
-        (``x [mm]``), else SI.
-    symmetry : {"whole", "half", "quarter"}, optional
-        Detected where not given.
-    force : float, optional
-        The total normal force of the model in the file [its force unit].
-    frame : ContactFrame or dict, optional
-        In SI; found where not given; a dict of some of origin, normal, x_axis: the
-        rest found.
-    fields : dict, optional
-        Field names: ``{"pressure": NAME[:COMPONENT], "normal_force": ...,
-        "reaction": ..., "stress": ...}``; recognised where not given.
 
-    Raises
-    ------
-    ResultError
-        Naming the file and the field.
-    """
-    path = Path(path)
-    if not path.is_file():
-        raise ResultError(f"{path}: " + ("not a regular file (a folder, a device or a pipe)"
-                                         if path.exists() else "no such file"))
-    if units is not None:
-        units_of(units, f"{path}: ")
-    kwargs = {"units": units, "symmetry": symmetry, "force": force, "frame": frame,
-              "fields": dict(fields or {})}
-    suffix = path.suffix.lower()
-    if suffix == ".csv":
-        from .table import read_csv
+def __getattr__(name: str):
+    """``read_result``, which moved to :mod:`fem_validation.readers` (the one dispatch):
+    kept here one release, with a DeprecationWarning."""
+    if name == "read_result":
+        import warnings
 
-        return read_csv(path, **kwargs)
-    if suffix == ".frd":
-        try:
-            from . import frd
-        except ImportError:
-            frd = None
-        if frd is None or not hasattr(frd, "read_result"):
-            raise ResultError(f"{path}: this build has no CalculiX .frd reader")
-        return frd.read_result(path, **kwargs)
-    from .meshes import read_mesh
+        from . import read_result
 
-    return read_mesh(path, **kwargs)
+        warnings.warn("fem_validation.readers.read_result is deprecated: use "
+                      "fem_validation.readers.read_result", DeprecationWarning, stacklevel=2)
+        return read_result
+    raise AttributeError(f"module {__name__!r} has no attribute {name!r}")

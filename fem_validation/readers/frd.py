@@ -567,22 +567,3 @@ def read_frd(path) -> FrdFile:
                    tuple(headers))
 
 
-def read_result(path, *, units: str = "SI", symmetry: str | None = None,
-                force: float | None = None, frame=None, fields: dict | None = None):
-    """A CalculiX .frd as a :class:`~fem_validation.result.ContactResult` (the interface of
-    :func:`fem_validation.readers.common.read_result`).
-
-    See :func:`fem_validation.readers.calculix.read_calculix`; ``fields`` may name
-    the pressure component (``{"pressure": "CPRESS"}``).  Where the deck's
-    problem.json lies beside the file, its units must agree with ``units``.
-    """
-    from ..result import ResultError
-    from .calculix import read_calculix
-
-    fields = dict(fields or {})
-    unknown = set(fields) - {"pressure"}
-    if unknown:
-        raise ResultError(f"{path}: a .frd takes only the field 'pressure' (a component "
-                          f"name such as CPRESS), got {', '.join(sorted(unknown))}")
-    return read_calculix(path, units=units, symmetry=symmetry, force=force, frame=frame,
-                         pressure_name=fields.get("pressure", "CPRESS"))

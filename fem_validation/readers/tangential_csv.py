@@ -15,7 +15,7 @@ The surface at one state of the path (the snapshot)::
     ...
 
 Columns (a header row, any order, case-insensitive; a unit in a column's name as
-:mod:`fem_validation.readers.table` reads it, which also reads spreadsheets' CSVs):
+:mod:`fem_validation.readers.csv_file` reads it, which also reads spreadsheets' CSVs):
 ``x``, ``y``, optionally ``z``; the contact pressure ``p`` (or ``pressure``,
 ``cpress``); the tangential traction ``qx``, ``qy`` (or
 ``shear_x``, ``shear_y``; ``cshear1``, ``cshear2``), optionally ``qz``: the
@@ -45,10 +45,10 @@ from pathlib import Path
 
 import numpy as np
 
-from ..result import MULTIPLICITY, ContactFrame, ResultError
-from ..tangential_result import TangentialResult, check_path
+from ..results.contact import MULTIPLICITY, ContactFrame, ResultError
+from ..results.tangential import TangentialResult, check_path
 from .common import PRESSURE_NAMES, finish, units_of
-from .table import Table, read_table
+from .csv_file import Table, read_table
 
 SHEAR_NAMES = {"x": ("qx", "shear_x", "cshear1", "tx"), "y": ("qy", "shear_y", "cshear2", "ty"),
                "z": ("qz", "shear_z", "tz")}
@@ -59,7 +59,7 @@ FORCE_NAMES = ("force", "q", "tangential_force")
 def read_history(path, units: str | None = None) -> tuple[np.ndarray, np.ndarray, str]:
     """The path of a frictional result: (displacement [m], force of the model in the file
     [N], units), from a CSV (see the module docstring), checked as a path
-    (:func:`fem_validation.tangential_result.check_path`).
+    (:func:`fem_validation.results.tangential.check_path`).
 
     Raises
     ------

@@ -24,7 +24,7 @@ import traceback
 from collections.abc import Callable, Iterable
 from pathlib import Path
 
-from .limits import MAX_TEXT_BYTES
+from ..limits import MAX_TEXT_BYTES
 
 __all__ = ["EXIT_FAILED", "FEM_RUN", "EXIT_INTERNAL", "EXIT_INTERRUPTED", "EXIT_USAGE", "OPTIONAL",
            "MissingExtra", "OneLineParser", "Unknown", "UsageError", "add_overwrite", "choices",
@@ -220,7 +220,7 @@ def out_dir(path, overwrite: bool, replaces: Iterable[str] = ()) -> Path:
     UsageError
         The folder holds other files and ``overwrite`` is not given.
     ValueError
-        The folder cannot be created or written (:func:`fem_validation.output.prepare_out`).
+        The folder cannot be created or written (:func:`fem_validation.cli.common.prepare_out`).
     """
     path = Path(path)
     if path.is_dir() and not overwrite:
@@ -234,7 +234,7 @@ def out_dir(path, overwrite: bool, replaces: Iterable[str] = ()) -> Path:
                                              if len(others) > 3 else "")
             raise UsageError(f"--out {str(path)!r} is not empty (it holds {shown}): give a new "
                              "or empty folder, or --overwrite to write into it anyway")
-    from .output import prepare_out
+    from .common import prepare_out
 
     return prepare_out(path)
 
@@ -265,7 +265,7 @@ def fem_constants(names: dict[str, Iterable[str]]) -> tuple[dict, str]:
     Parameters
     ----------
     names : dict
-        Module (relative to the package, ``"mesh"``) to the names wanted from it.
+        Module (its path below the package, ``"solvers.mesh"``) to the names wanted from it.
 
     Returns
     -------
@@ -280,7 +280,7 @@ def fem_constants(names: dict[str, Iterable[str]]) -> tuple[dict, str]:
     constants, missing = {}, []
     for module, wanted in names.items():
         try:
-            m = importlib.import_module(f".{module}", __package__)
+            m = importlib.import_module(f"fem_validation.{module}")
         except ModuleNotFoundError as exc:
             m = None
             missing.append((exc.name or module).split(".")[0])
@@ -326,7 +326,7 @@ def guarded(name: str, body: Callable[[list[str]], int], argv: list[str]) -> int
         package); 3 for anything else (a defect: "internal error ... please report");
         130 on Ctrl-C.  Never 1, which means a failed check.
     """
-    from .errors import FEMValidationError
+    from ..errors import FEMValidationError
 
     debug = "--debug" in argv
     try:
@@ -364,3 +364,24 @@ def guarded(name: str, body: Callable[[list[str]], int], argv: list[str]) -> int
     print(_first_line(f"{name}: internal error: {line}")[:500]
           + " (please report; rerun with --debug for the traceback)", file=sys.stderr)
     return EXIT_INTERNAL
+
+
+def prepare_out(path) -> Path:
+    """The output directory, created; ValueError (one line) where it cannot be written.
+
+    Refused: an existing file, a directory that cannot be created, one where no file
+    can be written (probed by creating and removing a temporary file).
+    """
+    import tempfile
+
+    path = Path(path)
+    if path.exists() and not path.is_dir():
+        raise ValueError(f"--out {str(path)!r} exists and is not a directory")
+    try:
+        path.mkdir(parents=True, exist_ok=True)
+        with tempfile.NamedTemporaryFile(dir=path, prefix=".probe"):
+            pass
+    except OSError as exc:
+        raise ValueError(f"--out {str(path)!r} cannot be written: "
+                         f"{exc.strerror or exc}") from None
+    return path

@@ -1,0 +1,2 @@
+"""Finite-element numerics that know no scene: elasticity, contact search,
+surface geometry."""

@@ -1,0 +1,235 @@
+"""A graded result as files: grade.json, grade.md and grade.png, for every grade type
+(one table, one bar chart of the checks)."""
+
+from __future__ import annotations
+
+import json
+import math
+from pathlib import Path
+
+import numpy as np
+
+SIGN_CONVENTION = ("Errors are (result - Hertz) / Hertz, Hertz evaluated at the force the "
+                   "result reached (matched force); RMS values are fractions of Hertz's p0.")
+
+
+def _fmt(name: str, value: float) -> str:
+    if value is None or (isinstance(value, float) and math.isnan(value)):
+        return "-"
+    if name == "angle_err_deg":
+        return f"{value:+.2f} deg"
+    if name == "exponent_err":
+        return f"{value:+.4f}"
+    if name.startswith(("rms_", "stress_rms_", "force_rel_err_rms")):
+        return f"{value:.2%}"
+    return f"{value:+.2%}"
+
+
+def _tol(name: str, tol) -> str:
+    if tol is None:
+        return "-"
+    if name == "exponent_err":
+        return f"{tol:.4f}"
+    return f"{tol:.2f} deg" if name == "angle_err_deg" else f"{tol:.2%}"
+
+
+def checks_table(checks, metrics_doc, fmt=None) -> list[str]:
+    """Markdown rows of a grade's checks: metric, meaning, value, tolerance, status
+    (``fmt(name, value)``: the text of a value, default this module's)."""
+    fmt = _fmt if fmt is None else fmt
+    lines = ["| check | what it measures | value | tolerance | status |", "|---|---|---|---|---|"]
+    for ch in checks:
+        header, meaning = metrics_doc.get(ch.name, (ch.name, ""))
+        status = ch.status.upper() if ch.passed is not None else ch.status
+        meaning = meaning.replace("|", "\\|")
+        lines.append(f"| {header} (`{ch.name}`) | {meaning} | {fmt(ch.name, ch.value)} | "
+                     f"{_tol(ch.name, ch.tolerance)} | {status} |")
+    return lines
+
+
+def grade_markdown(g, command: str = "") -> str:
+    """grade.md: what was graded, the method, every check with its tolerance, the verdict."""
+    from ..grading.contact import CURVE_METRICS, METRICS
+
+    curve = g.details.get("kind") == "force-approach"
+    h = g.hertz
+    failed = [c.name for c in g.checks if c.status == "fail"]
+    lines = [f"# Grade against Hertz: {'PASSED' if g.passed else 'FAILED'}", ""]
+    if g.hint:
+        lines += [f"> {g.hint}", ""]
+    lines += ["## What was graded", ""]
+    if command:
+        lines.append(f"- command: `{command}`")
+    lines += [f"- result: `{g.source or '-'}`", f"- scene: {g.scene}"]
+    if curve:
+        lines += [f"- a normal force against approach curve, {g.details['points']} points with "
+                  f"a positive approach; Hertz's force F(delta) of the scene's bodies at each "
+                  f"approach (`hertz.contact(..., approach=delta)`)",
+                  f"- largest force {g.force:.6g} N; Hertz there: a {h['a']:.6g} m, "
+                  f"b {h['b']:.6g} m, p0 {h['p0']:.6g} Pa, alpha {h['alpha']:.4g}"]
+    else:
+        d = g.details
+        method = ("second moments of the nodal forces" if g.semi_axes == "moments"
+                  else "least-squares fit of p^2")
+        lines += [f"- force (whole model, Hertz evaluated there): {g.force:.6g} N; symmetry "
+                  f"of the model: {g.symmetry} (forces of a quarter model x4, half x2)",
+                  f"- reader: {d.get('reader', '-')}, units of the file: {d.get('units', 'SI')}",
+                  f"- Hertz at that force: a {h['a']:.6g} m, b {h['b']:.6g} m, p0 "
+                  f"{h['p0']:.6g} Pa, delta {h['delta']:.6g} m, alpha {h['alpha']:.4g}, major "
+                  f"axis at {h['major_axis_angle_deg']:.3g} deg from body 1's x axis",
+                  f"- result: a {g.fem['a']:.6g} m, b {g.fem['b']:.6g} m (semi-axes from the "
+                  f"{method}), "
+                  f"p0 {g.fem['p0']:.6g} Pa (fit of p^2 above 20% of the largest pressure), "
+                  f"largest nodal pressure {g.fem['peak_nodal_pressure']:.6g} Pa"]
+    convention = ("Errors are (result - Hertz) / Hertz, Hertz's force taken at the same "
+                  "approach." if curve else SIGN_CONVENTION)
+    lines += ["", "## Sign convention", "", convention, "",
+              "## Checks", "",
+              "Status: PASS / FAIL against the tolerance (|value| at most the tolerance); "
+              "*information*: reported, not checked (the edge of the pressed region moves "
+              "with how a code spreads pressure past the edge: 6-12% for CalculiX); *by "
+              "construction*: holds by the way the result was made, so it checks nothing; "
+              "*not available*: the result does not hold what it needs.", ""]
+    lines += checks_table(g.checks, {**METRICS, **CURVE_METRICS})
+    lines += ["", "## Verdict", "",
+              ("PASSED: every checked metric is within its tolerance." if g.passed else
+               f"FAILED: {', '.join(failed)} outside the tolerance.")]
+    if not curve:
+        lines += ["", "## Method", "", "See `fem_validation.grading.contact`: a, b from the second "
+                  "moments of the nodal forces (sum f x^2 = P a^2/5 for Hertz's pressure) or "
+                  "from the p^2 fit; p0 from the fit; profiles: the nodal pressure "
+                  "interpolated on the surface triangles along Hertz's axes to 1.2 semi-axes; "
+                  "von Mises: the vertex of a parabola through the 5 axis nodes around the "
+                  "largest value; stress RMS: the nodal stress interpolated in the "
+                  "tetrahedra, 0.05 b to 3 b deep."]
+    return "\n".join(lines) + "\n"
+
+
+#: Bars of the checks chart stop at this |value| / tolerance (the value is written beside).
+CHECKS_CLIP = 3.0
+
+
+def source_name(g) -> str:
+    """The graded result's file name without its directories (else the scene's name)."""
+    return Path(g.source).name if g.source else g.scene
+
+
+def figure_title(fig, lines, width: int = 78) -> None:
+    """A figure's title: each line wrapped to ``width`` characters, at a size that reads at
+    page width."""
+    import textwrap
+
+    fig.suptitle("\n".join(textwrap.fill(line, width) for line in lines if line),
+                 fontsize=11)
+
+
+def plot_checks(ax, checks, metrics_doc: dict, fmt=None, tol=None) -> None:
+    """The checks of a grade as horizontal bars of |value| / tolerance (green pass, red
+    fail), one per checked metric, labelled with its short name, its value and tolerance
+    beside the bar; bars stop at :data:`CHECKS_CLIP` (the value says how far beyond).
+
+    Parameters
+    ----------
+    ax : matplotlib Axes
+    checks : sequence of Check
+        Those without a tolerance or a pass/fail status are left out.
+    metrics_doc : dict
+        Metric name -> (short name, meaning), e.g. ``fem_validation.grading.contact.METRICS``.
+    fmt, tol : callable, optional
+        (name, value) -> text of a value and of a tolerance (default: this module's).
+    """
+    fmt = _fmt if fmt is None else fmt
+    tol = _tol if tol is None else tol
+    checked = [c for c in checks if c.tolerance is not None and c.passed is not None]
+    ratio = np.array([abs(c.value) / c.tolerance for c in checked])
+    shown = np.minimum(ratio, CHECKS_CLIP)
+    y = np.arange(len(checked))
+    ax.barh(y, shown, color=["C2" if c.passed else "C3" for c in checked], height=0.6)
+    ax.axvline(1.0, color="k", lw=1)
+    right = max(1.2, float(shown.max()) if len(shown) else 1.0)
+    for k, c in enumerate(checked):
+        ax.text(shown[k] + 0.02 * right, k, f"{fmt(c.name, c.value)} (tol "
+                f"{tol(c.name, c.tolerance)})" + (" >>" if ratio[k] > CHECKS_CLIP else ""),
+                va="center", fontsize=9,
+                bbox={"facecolor": "white", "edgecolor": "none", "pad": 1})
+    ax.set_xlim(0, 1.75 * right)
+    ax.set_yticks(y)
+    ax.set_yticklabels([metrics_doc.get(c.name, (c.name,))[0] for c in checked], fontsize=10)
+    ax.invert_yaxis()
+    ax.set_xlabel("|value| / tolerance (1 = the limit)", fontsize=10)
+    ax.set_title("checks (green pass, red fail)", fontsize=10)
+
+
+def plot_grade(g, path: Path) -> Path:
+    """grade.png: the pressure along Hertz's axes (or, for a force-approach curve, the
+    force and its error) above the checks; titled with the result's file name, the verdict
+    and the unit hint, sized to read at page width (8 inches)."""
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    from ..grading.contact import CURVE_METRICS, METRICS
+
+    curve = g.details.get("kind") == "force-approach"
+    fig = plt.figure(figsize=(8, 8.2))
+    grid = fig.add_gridspec(2, 2, height_ratios=[1, 0.9])
+    axes = [fig.add_subplot(grid[0, 0]), fig.add_subplot(grid[0, 1]),
+            fig.add_subplot(grid[1, :])]
+    h = g.hertz
+    if curve:
+        d, f, ref = (np.asarray(g.fem[k]) for k in ("approach", "force", "hertz_force"))
+        axes[0].loglog(d * 1e6, ref, "-", color="k", label="Hertz F(delta)")
+        axes[0].loglog(d * 1e6, f, "o", ms=3, color="C3", label="result")
+        axes[0].set_xlabel("approach delta [um]")
+        axes[0].set_ylabel("normal force [N]")
+        axes[0].set_title("force against approach", fontsize=10)
+        axes[1].plot(d * 1e6, 100 * np.asarray(g.fem["rel_err"]), "o-", ms=3, color="C3",
+                     label="(F - F_Hertz) / F_Hertz")
+        limit = g.check("force_rel_err_max").tolerance
+        if limit is not None:
+            for s in (-1, 1):
+                axes[1].axhline(100 * s * limit, color="0.5", ls=":",
+                                label="tolerance" if s > 0 else None)
+        axes[1].set_xlabel("approach delta [um]")
+        axes[1].set_ylabel("force error [%]")
+        axes[1].set_title("error along the curve", fontsize=10)
+    else:
+        for ax, name, semi in zip(axes[:2], ("major", "minor"), (h["a"], h["b"]), strict=True):
+            d = g.profiles[name]
+            ax.plot(d["s"] / semi, d["hertz"] / h["p0"], "-", color="k", label="Hertz")
+            ax.plot(d["s"] / semi, d["fem"] / h["p0"], "o", ms=2.5, color="C3",
+                    label="result")
+            ax.set_xlabel(f"along Hertz's {name} axis / {'a' if name == 'major' else 'b'}")
+            ax.set_title(f"pressure, {name} axis", fontsize=10)
+        axes[0].set_ylabel("pressure / Hertz's p0")
+    for ax in axes[:2]:
+        ax.grid(True, alpha=0.3)
+        ax.legend(fontsize=9, loc="best")
+    plot_checks(axes[2], g.checks, {**METRICS, **CURVE_METRICS})
+    figure_title(fig, [
+        f"{source_name(g)} against Hertz: {'PASSED' if g.passed else 'FAILED'}",
+        f"{g.scene}; force {g.force:.5g} N"
+        + ("" if curve else f" (whole contact, {g.symmetry} model)")
+        + "; errors (result - Hertz) / Hertz at "
+        + ("the same approach" if curve else "the same force"),
+        g.hint])
+    fig.tight_layout()
+    fig.savefig(path, dpi=120)
+    plt.close(fig)
+    return path
+
+
+def write_grade(g, out: Path, command: str = "") -> tuple[Path, Path, Path]:
+    """DIR/grade.json, DIR/grade.md and DIR/grade.png of a Grade."""
+    out = Path(out)
+    paths = out / "grade.json", out / "grade.md", out / "grade.png"
+    row = g.to_dict()
+    if command:
+        row["command"] = command
+    if g.details.get("kind") == "force-approach":
+        row["fem"] = {k: (v.tolist() if hasattr(v, "tolist") else v) for k, v in g.fem.items()}
+    paths[0].write_text(json.dumps(row, indent=1, default=float))
+    paths[1].write_text(grade_markdown(g, command))
+    plot_grade(g, paths[2])
+    return paths

@@ -1,0 +1,2 @@
+"""Our runs end to end: block validation, curved bodies, friction, the
+refinement study."""
