@@ -112,9 +112,6 @@ NAMED = {"steel-aluminium": steel_on_aluminium, "crossed-30deg": crossed_30deg}
 #: The longest scene name a scene file may give [characters].
 MAX_NAME = 100
 
-_SCENE_KEYS = ("name", "load", "approach", "angle_deg", "body1", "body2")
-_BODY_KEYS = ("Rx", "Ry", "E", "nu")
-
 
 def scene_from_toml(path) -> Scene:
     """A :class:`Scene` from a ``hertz`` TOML scene file (SI; the format of :mod:`hertz.cli`).
@@ -124,8 +121,10 @@ def scene_from_toml(path) -> Scene:
     [m] (at most one: the target; a graded result brings its own force, so
     neither is needed there: the target load is then NaN), ``angle_deg`` and
     ``name`` (default: the file's stem; one line of at most :data:`MAX_NAME`
-    printable characters) are optional.  The file is read through
-    :func:`fem_validation.limits.read_small_text` (at most 1 MiB).  Unlike the ``hertz``
+    printable characters) are optional; the tangential keys of the format (``tangential``,
+    ``mu``, ``direction_deg``) are checked and not used.  The file is read through hertz's
+    scene reader, :func:`hertz._scene.read_scene` (at most 1 MiB), one parser for both
+    packages.  Unlike the ``hertz``
     command, nothing is filled in from its default scene: a grade against a body
     the file does not describe would be a wrong number.
 
@@ -146,66 +145,27 @@ def scene_from_toml(path) -> Scene:
     >>> s.name, s.load, round(s.hertz().a * 1e6, 1)
     ('ball', 100.0, 186.6)
     """
-    import tomllib
     from pathlib import Path
 
-    from .limits import read_small_text
+    from hertz._scene import read_scene
 
     path = Path(path)
     where = f"scene file {str(path)!r}"
-    try:
-        text = read_small_text(path, "scene file")
-    except ValueError as exc:
-        if isinstance(exc.__context__, OSError):  # the project's wording for these
-            raise ValueError(f"cannot read {where}: "
-                             f"{exc.__context__.strerror or exc.__context__}") from None
-        raise
-    try:
-        data = tomllib.loads(text)
-    except tomllib.TOMLDecodeError as exc:
-        raise ValueError(f"{where} is not valid TOML: {exc}") from None
-    except RecursionError:
-        raise ValueError(f"{where} is nested too deeply to read") from None
-    unknown = sorted(set(data) - set(_SCENE_KEYS))
-    if unknown:
-        raise ValueError(f"{where}: unknown key(s) {', '.join(unknown)}; allowed: "
-                         f"{', '.join(_SCENE_KEYS)}")
-
-    def number(value, key):
-        if isinstance(value, bool) or not isinstance(value, int | float | str):
-            raise ValueError(f"{where}: {key} must be a number, got {type(value).__name__}")
-        try:
-            x = float(value)
-        except (ValueError, OverflowError):
-            raise ValueError(f"{where}: {key} must be a number, got {value!r}"[:200]) from None
-        if math.isnan(x):
-            raise ValueError(f"{where}: {key} must be a number, got NaN")
-        return x
-
+    # every key of the format is read (the tangential ones, which a hertz scene may hold,
+    # are checked and not used here); the bodies must be complete
+    data = read_scene(path, complete=True)
     bodies = []
     for name in ("body1", "body2"):
-        spec = data.get(name)
-        if not isinstance(spec, dict):
-            raise ValueError(f"{where}: the [{name}] table is missing")
-        missing = [k for k in _BODY_KEYS if k not in spec]
-        extra = sorted(set(spec) - set(_BODY_KEYS))
-        if missing or extra:
-            raise ValueError(f"{where}: [{name}] needs exactly {', '.join(_BODY_KEYS)}"
-                             + (f"; missing {', '.join(missing)}" if missing else "")
-                             + (f"; unknown {', '.join(extra)}" if extra else ""))
         try:
-            bodies.append(hertz.Body(**{k: number(spec[k], f"{name}.{k}") for k in _BODY_KEYS}))
+            bodies.append(hertz.Body(**data[name]))
         except (TypeError, ValueError) as exc:
             raise ValueError(f"{where}: [{name}]: {exc}") from None
-    angle = math.radians(number(data.get("angle_deg", 0.0), "angle_deg"))
-    if "load" in data and "approach" in data:
-        raise ValueError(f"{where}: give at most one of load [N] and approach [m]")
+    angle = math.radians(data.get("angle_deg", 0.0))
     try:
         if "approach" in data:
-            load = hertz.contact(*bodies, angle=angle,
-                                 approach=number(data["approach"], "approach")).load
+            load = hertz.contact(*bodies, angle=angle, approach=data["approach"]).load
         else:
-            load = number(data["load"], "load") if "load" in data else 1.0
+            load = data.get("load", 1.0)
             hertz.contact(*bodies, load=load, angle=angle)  # can these bodies touch at a point?
             if "load" not in data:
                 load = math.nan

@@ -631,3 +631,23 @@ def test_cli_origin_is_in_the_files_units(ball, tmp_path):
         rows.append(json.loads((out / "grade.json").read_text()))
     for key in ("a_rel_err", "b_rel_err", "p0_rel_err"):
         assert rows[0][key] == rows[1][key]
+
+
+def test_a_hertz_scene_with_its_tangential_keys_is_a_fem_validation_scene(tmp_path):
+    """One scene format, one parser (hertz._scene): what ``hertz --print-scene`` writes,
+    tangential keys included, is read by fem_validation as the same contact (it was
+    refused: "unknown key(s) direction_deg, mu, tangential")."""
+    done = subprocess.run([sys.executable, "-m", "hertz", "--print-scene", "--tangential", "10",
+                           "--mu", "0.3"], capture_output=True, text=True, timeout=120)
+    assert done.returncode == 0, done.stderr
+    path = tmp_path / "s.toml"
+    path.write_text(done.stdout)
+    scene = scene_from_toml(path)
+    c = scene.hertz()
+    import tomllib
+
+    data = tomllib.loads(done.stdout)
+    assert data["mu"] == 0.3 and data["tangential"] == 10
+    ref = hertz.contact(hertz.Body(**data["body1"]), hertz.Body(**data["body2"]),
+                        load=data["load"], angle=math.radians(data.get("angle_deg", 0.0)))
+    assert (c.a, c.b, c.p0) == (ref.a, ref.b, ref.p0)
