@@ -185,3 +185,137 @@ def test_hostile_name_meshes_stay_valid(ball_model, tmp_path):
     np.testing.assert_allclose(back.points, model.nodes * 1e3)
     assert set(back.field_data) >= {"BODY1", "BODY2", "CONTACT1", "CONTACT2"}
 
+
+
+# --- audit finding 16: options that wrote an unrunnable or meaningless deck ----------------
+
+BALL_TOML = """name = "ball"
+load = 100.0
+[body1]
+Rx = 0.01
+Ry = 0.01
+E = 210e9
+nu = 0.3
+[body2]
+Rx = "inf"
+Ry = "inf"
+E = 210e9
+nu = 0.3
+"""
+
+
+@pytest.mark.parametrize("options, option, message", [
+    # *STATIC increments of 5e-10 (5e-6) under *STEP, INC=1000: ccx cannot finish
+    (["--friction", "0.3", "--friction-increments", "1000000000"], "--friction-increments",
+     r"friction increments must be an integer from 1 to 100 .*got 1000000000"),
+    (["--friction", "0.3", "--friction-increments", "100000"], "--friction-increments",
+     r"from 1 to 100 .*got 100000"),
+    (["--friction", "0.3", "--friction-increments", "1" * 5000], "--friction-increments",
+     r"at most 18 digits"),
+    # a penalty slope of 6.7e-318 MPa/mm
+    (["--penalty-factor", "5e-324"], "--penalty-factor",
+     r"penalty_factor must be a finite number > 0 in \[0\.1, 1e\+06\] .*got 5e-324"),
+    (["--penalty-factor", "1e7"], "--penalty-factor", r"in \[0\.1, 1e\+06\].*got 10000000"),
+    # *FRICTION 4.9e-324
+    (["--friction", "5e-324"], "--friction", r"mu must be a finite number in \[0\.001, 10\] "
+                                             r".*got 5e-324"),
+    (["--friction", "1e300"], "--friction", r"in \[0\.001, 10\].*got 1e\+300"),
+    # peak_displacement 0.0
+    (["--friction", "0.3", "--friction-ratio", "5e-324"], "--friction-ratio",
+     r"friction ratio must be in \(0, 1\), at least 0\.001 .*got 5e-324"),
+    (["--level", "-1"], "--level", r"level must be >= 0.*got -1"),
+    (["--level", "5"], "", r"level must be one of \[0, 1, 2, 3, 4\] .*sphere-plane.*got 5"),
+    (["--level", "9" * 5000], "--level", r"at most 18 digits"),
+    (["--friction", "0.3", "--model", "quarter"], "", r"half or whole model"),
+])
+def test_deck_options_out_of_range_refused_in_one_line(no_gmsh, capsys, tmp_path, options,
+                                                       option, message):
+    """One line naming the option, the range and the value, exit 2, and no --out folder:
+    every option is checked before anything is meshed or written."""
+    from fem_validation.__main__ import main
+
+    scene = tmp_path / "ball.toml"
+    scene.write_text(BALL_TOML)
+    out = tmp_path / "deck"
+    assert main(["deck", "--scene", str(scene), "--format", "calculix", "--out", str(out),
+                 *options]) == 2
+    err = capsys.readouterr().err
+    assert len(err.strip().splitlines()) == 1 and len(err) < 400, err
+    assert re.search(message, err), err
+    assert f"argument {option}:" in err if option else "level" in err or "model" in err
+    assert not out.exists()
+
+
+@pytest.fixture(scope="module")
+def half_ball():
+    return build_model(Scene("half", BALL, PLANE, 100.0), 0, "half")
+
+
+def test_friction_options_range_in_the_api(half_ball):
+    """friction_path (and write_deck through check_deck) refuses what the CLI refuses."""
+    from fem_validation.decks.inp import MAX_FRICTION_INCREMENTS, friction_path
+
+    for kwargs, message in [({"mu": 5e-324}, r"^mu must be a finite number in \[0\.001, 10\]"),
+                            ({"mu": 11.0}, r"^mu must be"),
+                            ({"mu": True}, r"^mu must be"),
+                            ({"ratio": 5e-324}, r"^friction ratio must be in \(0, 1\), at "
+                                                r"least 0\.001"),
+                            ({"ratio": 1.0}, r"^friction ratio"),
+                            ({"increments": 10 ** 9}, r"^friction increments must be an "
+                                                      r"integer from 1 to 100"),
+                            ({"increments": MAX_FRICTION_INCREMENTS + 1}, r"from 1 to 100")]:
+        args = {"mu": 0.3, "ratio": 0.8, "increments": 2, **kwargs}
+        with pytest.raises(ValueError, match=message):
+            friction_path(half_ball, args["mu"], args["ratio"], args["increments"])
+    # the range's ends write a runnable path: a positive peak, increments INC holds
+    for mu, ratio in ((1e-3, 1e-3), (10.0, 0.999)):
+        fp = friction_path(half_ball, mu, ratio, MAX_FRICTION_INCREMENTS)
+        assert math.isfinite(fp.peak) and fp.peak > 0
+
+
+def test_friction_increments_fit_the_step(half_ball, tmp_path):
+    """The largest ramp writes increments every *STEP's INC holds (ccx stops at INC)."""
+    from fem_validation.decks.inp import (
+        FRICTION_STEP_INC,
+        MAX_FRICTION_INCREMENTS,
+        friction_path,
+    )
+
+    assert 2 * MAX_FRICTION_INCREMENTS + 1 <= FRICTION_STEP_INC
+    path = tmp_path / "f.inp"
+    write_inp(half_ball, path, friction=friction_path(half_ball, 0.3, 0.8,
+                                                      MAX_FRICTION_INCREMENTS))
+    steps = re.findall(r"\*STEP, INC=(\d+)\n\*STATIC, DIRECT\n([^,]+), 1\.", path.read_text())
+    assert len(steps) == 3
+    for inc, dt in steps:
+        assert 1 / float(dt) <= int(inc) + 1e-9
+    # a FrictionPath built by hand past the cap is refused, not written
+    fp = dataclasses.replace(friction_path(half_ball, 0.3), increments=10 ** 6)
+    with pytest.raises(ValueError, match=r"at most 499 .*INC=1000"):
+        write_inp(half_ball, tmp_path / "g.inp", friction=fp)
+    assert not (tmp_path / "g.inp").exists()
+
+
+@pytest.mark.parametrize("factor", [5e-324, 0.09, 1.01e6, 1e300])
+def test_penalty_factor_range(no_gmsh, factor):
+    with pytest.raises(ValueError, match=r"^penalty_factor must be a finite number > 0 in "
+                                         r"\[0\.1, 1e\+06\]"):
+        build_model(Scene("ball", BALL, PLANE, 800.0), 0, penalty_factor=factor)
+
+
+def test_write_deck_checks_before_meshing(no_gmsh, tmp_path):
+    """write_deck's own checks (the API path) run before gmsh and before --out is made."""
+    from fem_validation.decks import write_deck
+
+    scene = Scene("ball", BALL, PLANE, 100.0)
+    for kwargs, message in [({"level": 5}, r"^level must be one of \[0, 1, 2, 3, 4\]"),
+                            ({"level": 6, "model": "whole"}, r"^level must be one of \[0, 1, "
+                                                             r"2, 3, 4, 5\]"),
+                            ({"level": True}, r"^level must be"),
+                            ({"friction": 0.3, "friction_increments": 10 ** 9},
+                             r"^friction increments"),
+                            ({"friction": 5e-324}, r"^mu must be"),
+                            ({"penalty_factor": 5e-324}, r"^penalty_factor")]:
+        with pytest.raises(ValueError, match=message):
+            write_deck(scene, "calculix", tmp_path / "d", **kwargs)
+        assert not (tmp_path / "d").exists()

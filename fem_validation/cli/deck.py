@@ -5,10 +5,49 @@ from __future__ import annotations
 import argparse
 from pathlib import Path
 
-from ..decks import DEFAULT_DECK_LEVEL, FORMATS, read_scene, write_deck
-from ..decks.inp import DEFAULT_FRICTION_INCREMENTS, UNITS
-from ..decks.model import PENALTY_FACTOR
+from ..decks import DEFAULT_DECK_LEVEL, FORMATS, check_deck, read_scene, write_deck
+from ..decks.inp import (
+    DEFAULT_FRICTION_INCREMENTS,
+    FRICTION_MU_RANGE,
+    MAX_FRICTION_INCREMENTS,
+    MIN_FRICTION_RATIO,
+    UNITS,
+    check_increments,
+    check_mu,
+    check_ratio,
+)
+from ..decks.model import PENALTY_FACTOR, PENALTY_FACTOR_RANGE, check_penalty_factor
 from .common import OneLineParser, add_overwrite, finite, out_dir, positive, require
+
+
+def _checked(parse, check):
+    """An option type: ``parse`` the text, then ``check`` the value (its ValueError becomes
+    argparse's one line, which names the option)."""
+    def option_type(text: str):
+        value = parse(text)
+        try:
+            return check(value)
+        except ValueError as exc:
+            raise argparse.ArgumentTypeError(str(exc)) from None
+    option_type.__name__ = getattr(check, "__name__", "value")
+    return option_type
+
+
+def _integer(text: str) -> int:
+    """An integer of at most 18 digits (an option type; the line never echoes thousands)."""
+    shown = text if len(text) <= 40 else text[:37] + "..."
+    if len(text.strip().lstrip("+-")) > 18:
+        raise argparse.ArgumentTypeError(f"not an integer of at most 18 digits: {shown!r}")
+    try:
+        return int(text)
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"not an integer: {shown!r}") from None
+
+
+def _level(value: int) -> int:
+    if value < 0:
+        raise ValueError(f"level must be >= 0 (0 coarse), got {value!r}")
+    return value
 
 
 def _deck(argv: list[str]) -> int:
@@ -35,16 +74,22 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
     add_overwrite(parser)
     parser.add_argument("--units", choices=sorted(UNITS), default="mm",
                         help="units of the files (default mm: mm, N, MPa)")
-    parser.add_argument("--level", type=int, default=DEFAULT_DECK_LEVEL,
-                        help=f"mesh level, 0 coarse (default {DEFAULT_DECK_LEVEL})")
+    parser.add_argument("--level", type=_checked(_integer, _level), default=DEFAULT_DECK_LEVEL,
+                        help=f"mesh level, 0 coarse: 0-4 for a true ball on a plane or in a "
+                             f"groove, 0-5 for paraboloid-faced blocks (default "
+                             f"{DEFAULT_DECK_LEVEL})")
     parser.add_argument("--model", choices=("auto", "quarter", "half", "whole"),
                         default="auto",
                         help="quarter, half (y >= 0) or whole model (default: quarter where "
                              "the scene allows; half with --friction)")
     parser.add_argument("--slave", type=int, choices=(1, 2), default=1,
                         help="body whose contact face is the slave surface (default 1)")
-    parser.add_argument("--penalty-factor", type=positive, default=PENALTY_FACTOR,
-                        help=f"penalty slope over E*/h0 (default {PENALTY_FACTOR:g})")
+    low, high = PENALTY_FACTOR_RANGE
+    parser.add_argument("--penalty-factor", type=_checked(positive, check_penalty_factor),
+                        default=PENALTY_FACTOR,
+                        help=f"penalty slope over E*/h0, in [{low:g}, {high:g}]: below, the "
+                             f"overclosure exceeds Hertz's approach; above, the contact swamps "
+                             f"the elements' stiffness (default {PENALTY_FACTOR:g})")
     f = parser.add_argument_group(
         "Coulomb friction (--format calculix)",
         "After the normal step, body 1's far face moves along x to the displacement at which "
@@ -52,22 +97,30 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
         "minus that and forward again, with output at every increment; half model (y >= 0) "
         "of paraboloid-faced blocks; stick slope = the normal penalty slope. Grade the run "
         "with: python -m fem_validation grade --tangential DIR/hertz.frd --scene FILE")
-    f.add_argument("--friction", type=finite, metavar="MU",
-                   help="coefficient of friction: write a frictional deck")
-    f.add_argument("--friction-ratio", type=finite, default=0.8, metavar="RATIO",
-                   help="Q*/(mu P) at the end of the ramp, in (0, 1) (default 0.8)")
-    f.add_argument("--friction-increments", type=int, default=DEFAULT_FRICTION_INCREMENTS,
-                   metavar="N", help="increments of the ramp; unloading takes 2N, reloading "
-                                     "2N + 1 (one past the peak, so that the loop closes) "
-                                     f"(default {DEFAULT_FRICTION_INCREMENTS})")
+    f.add_argument("--friction", type=_checked(finite, check_mu), metavar="MU",
+                   help="coefficient of friction, in [{:g}, {:g}] (those of solids): write a "
+                        "frictional deck".format(*FRICTION_MU_RANGE))
+    f.add_argument("--friction-ratio", type=_checked(finite, check_ratio), default=0.8,
+                   metavar="RATIO",
+                   help=f"Q*/(mu P) at the end of the ramp, in [{MIN_FRICTION_RATIO:g}, 1): 1 "
+                        f"is gross sliding, below {MIN_FRICTION_RATIO:g} the slip annulus is "
+                        f"far below an element (default 0.8)")
+    f.add_argument("--friction-increments", type=_checked(_integer, check_increments),
+                   default=DEFAULT_FRICTION_INCREMENTS, metavar="N",
+                   help=f"increments of the ramp, 1 to {MAX_FRICTION_INCREMENTS}; unloading "
+                        f"takes 2N, reloading 2N + 1 (one past the peak, so that the loop "
+                        f"closes): 5N + 1 increments of ccx, each about 100 s of CPU at level "
+                        f"0 (default {DEFAULT_FRICTION_INCREMENTS})")
 
 
 def run(args: argparse.Namespace, command: str | None = None) -> int:
     """Run the ``deck`` subcommand; ValueError / FEMValidationError propagate to the caller.
 
     The scene is read (at most 1 MiB, :func:`fem_validation.limits.read_small_text`), the
-    packages a deck needs are looked up and ``--out`` is checked (new or empty, unless
-    ``--overwrite``) before anything is meshed.
+    packages a deck needs are looked up, every option is checked against the scene
+    (:func:`fem_validation.decks.check_deck`: the level of its geometry, the friction
+    options' model and format) and ``--out`` is checked (new or empty, unless
+    ``--overwrite``), in that order, before anything is meshed or written.
     """
     scene = read_scene(args.scene)
     if args.friction is None and (args.friction_ratio != 0.8 or
@@ -76,6 +129,9 @@ def run(args: argparse.Namespace, command: str | None = None) -> int:
     require(("gmsh", "skfem", "pyamg", *(() if args.deck_format in ("calculix", "abaqus")
                                          else ("meshio",))),
             f"deck --format {args.deck_format}")
+    check_deck(scene, args.deck_format, args.units, args.level, args.model, args.slave,
+               args.penalty_factor, args.friction, args.friction_ratio,
+               args.friction_increments)
     out_dir(args.out, args.overwrite)
     m, paths = write_deck(scene, args.deck_format, args.out, args.units, args.level,
                           args.model, args.slave, args.penalty_factor, command,

@@ -35,11 +35,11 @@ import math
 from pathlib import Path
 
 from ..scenes import Scene, scene_from_toml
-from .inp import DEFAULT_FRICTION_INCREMENTS, UNITS, friction_path, write_inp
+from .inp import DEFAULT_FRICTION_INCREMENTS, UNITS, check_friction, friction_path, write_inp
 from .meshes import write_mesh, write_problem
-from .model import PENALTY_FACTOR, DeckModel, build_model
+from .model import PENALTY_FACTOR, DeckModel, build_model, check_model
 
-__all__ = ["FORMATS", "DeckModel", "build_model", "friction_path",
+__all__ = ["FORMATS", "DeckModel", "build_model", "check_deck", "friction_path",
            "read_scene", "write_deck"]
 
 FORMATS = ("calculix", "abaqus", "msh", "med", "exodus", "xdmf")
@@ -70,6 +70,46 @@ def read_scene(path) -> Scene:
     return scene
 
 
+def check_deck(scene: Scene, fmt: str, units: str = "mm", level: int = DEFAULT_DECK_LEVEL,
+               model: str = "auto", slave_body: int = 1,
+               penalty_factor: float = PENALTY_FACTOR, friction: float | None = None,
+               friction_ratio: float = 0.8,
+               friction_increments: int = DEFAULT_FRICTION_INCREMENTS) -> str:
+    """Check what :func:`write_deck` is given, before anything is meshed or written.
+
+    The format and units, the friction options (a CalculiX deck of a half or whole
+    model; mu, the ratio and the increments in their ranges:
+    :func:`fem_validation.decks.inp.check_friction`) and the model's
+    (:func:`fem_validation.decks.model.check_model`: the scene, the level of the
+    geometry, the penalty factor in [0.1, 1e6]).
+
+    Returns
+    -------
+    str
+        The model to build ("auto" is "half" with friction).
+
+    Raises
+    ------
+    ValueError
+        Naming the parameter, the value and what is allowed.
+    """
+    if fmt not in FORMATS:
+        raise ValueError(f"format must be one of {', '.join(FORMATS)}, got {fmt!r}")
+    if units not in UNITS:
+        raise ValueError(f"units must be one of {', '.join(UNITS)}, got {units!r}")
+    if friction is not None:
+        if fmt != "calculix":
+            raise ValueError(f"friction decks are written for format calculix only, got "
+                             f"{fmt!r}")
+        if model not in ("auto", "half", "whole"):
+            raise ValueError(f"a frictional deck is a half or whole model (the load along x "
+                             f"breaks the symmetry in x = 0), got model {model!r}")
+        model = "half" if model == "auto" else model
+        check_friction(friction, friction_ratio, friction_increments)
+    check_model(scene, level, model, slave_body, penalty_factor)
+    return model
+
+
 def write_deck(scene: Scene, fmt: str, out, units: str = "mm", level: int = DEFAULT_DECK_LEVEL,
                model: str = "auto", slave_body: int = 1,
                penalty_factor: float = PENALTY_FACTOR, command: str | None = None,
@@ -88,21 +128,27 @@ def write_deck(scene: Scene, fmt: str, out, units: str = "mm", level: int = DEFA
     units : {"mm", "SI"}
         mm, N, MPa or m, N, Pa (the files and problem.json).
     level : int
-        Mesh level (0 coarse).
+        Mesh level (0 coarse): 0-4 for true curved bodies, 0-5 for paraboloid-faced
+        blocks.
     model : {"auto", "quarter", "half", "whole"}
         With ``friction``, "auto" is the half model.
     slave_body : {1, 2}
     penalty_factor : float
-        Penalty slope over E*/h0.
+        Penalty slope over E*/h0, in [0.1, 1e6]
+        (:data:`fem_validation.decks.model.PENALTY_FACTOR_RANGE`: below, the overclosure
+        exceeds Hertz's approach; above, the contact swamps the elements' stiffness).
     command : str, optional
         The command line, recorded in the files.
     friction : float, optional
-        Coefficient of friction: a frictional CalculiX deck (the normal step,
-        then the tangential path of :func:`friction_path` along x).
+        Coefficient of friction, in [0.001, 10]: a frictional CalculiX deck (the normal
+        step, then the tangential path of :func:`friction_path` along x).
     friction_ratio : float
-        Q*/(mu P) at the end of the ramp (Cattaneo-Mindlin), in (0, 1).
+        Q*/(mu P) at the end of the ramp (Cattaneo-Mindlin), in [0.001, 1).
     friction_increments : int
-        Increments of the ramp (unloading 2n, reloading 2n + 1: one past the peak).
+        Increments of the ramp, 1 to 100 (unloading 2n, reloading 2n + 1: one past the
+        peak; ccx's ``*STEP, INC=1000`` holds them).
+
+    Every option is checked (:func:`check_deck`) before anything is meshed or written.
 
     Returns
     -------
@@ -110,18 +156,8 @@ def write_deck(scene: Scene, fmt: str, out, units: str = "mm", level: int = DEFA
     paths : list of Path
         The files written (the deck or mesh, then problem.json).
     """
-    if fmt not in FORMATS:
-        raise ValueError(f"format must be one of {', '.join(FORMATS)}, got {fmt!r}")
-    if units not in UNITS:
-        raise ValueError(f"units must be one of {', '.join(UNITS)}, got {units!r}")
-    if friction is not None:
-        if fmt != "calculix":
-            raise ValueError(f"friction decks are written for format calculix only, got "
-                             f"{fmt!r}")
-        if model not in ("auto", "half", "whole"):
-            raise ValueError(f"a frictional deck is a half or whole model (the load along x "
-                             f"breaks the symmetry in x = 0), got model {model!r}")
-        model = "half" if model == "auto" else model
+    model = check_deck(scene, fmt, units, level, model, slave_body, penalty_factor, friction,
+                       friction_ratio, friction_increments)
     out = Path(out)
     m = build_model(scene, level, model, slave_body, penalty_factor)
     path_ = None if friction is None else friction_path(m, friction, friction_ratio,

@@ -32,6 +32,20 @@ UNITS = {"SI": {"length": 1.0, "force": 1.0, "stress": 1.0,
 DEFAULT_FRICTION_INCREMENTS = 2
 #: Stick slope of the penalty friction over the normal penalty slope.
 STICK_SLOPE_FACTOR = 1.0
+#: The most increments of the ramp a deck takes: the reloading's 2N + 1 fixed increments
+#: must fit the tangential steps' ``*STEP, INC=`` (:data:`FRICTION_STEP_INC`), and at about
+#: 100 s of ccx CPU an increment at level 0, N = 100 is already a loop of 5N + 1 = 501
+#: increments (half a day).  (1e9 wrote increments of 5e-10 that ccx stops after 1000 of.)
+MAX_FRICTION_INCREMENTS = 100
+#: ``*STEP, INC=`` of the tangential steps: the most increments ccx takes in one step.
+FRICTION_STEP_INC = 1000
+#: The coefficients of friction a deck takes, [low, high]: measured ones of solids lie
+#: between about 0.001 (lubricated or superlubric pairs) and a few (clean metals in vacuum).
+FRICTION_MU_RANGE = (1e-3, 10.0)
+#: The least Q*/(mu P) at the end of the ramp (the most is 1, excluded: gross sliding):
+#: the slip annulus is then about a ratio/3 wide, under 1/3000 of a, far below any element
+#: (h0 >= 0.05 a at the deck levels), so that the loop has no area to grade.
+MIN_FRICTION_RATIO = 1e-3
 
 
 @dataclass(frozen=True)
@@ -68,6 +82,63 @@ class FrictionPath:
     stick_slope: float
 
 
+def check_mu(mu) -> float:
+    """``mu`` if it is a coefficient of friction in :data:`FRICTION_MU_RANGE`.
+
+    Raises
+    ------
+    ValueError
+        Naming the parameter, the range and the value.
+    """
+    low, high = FRICTION_MU_RANGE
+    if isinstance(mu, bool) or not isinstance(mu, int | float) or not (
+            math.isfinite(mu) and low <= mu <= high):
+        raise ValueError(f"mu must be a finite number in [{low:g}, {high:g}] (a coefficient "
+                         f"of friction of solids), got {mu!r}")
+    return mu
+
+
+def check_ratio(ratio) -> float:
+    """``ratio`` (Q*/(mu P) at the end of the ramp) if it is in [:data:`MIN_FRICTION_RATIO`, 1).
+
+    Raises
+    ------
+    ValueError
+        Naming the parameter, the range and the value.
+    """
+    if isinstance(ratio, bool) or not isinstance(ratio, int | float) or not (
+            MIN_FRICTION_RATIO <= ratio < 1):
+        raise ValueError(f"friction ratio must be in (0, 1), at least {MIN_FRICTION_RATIO:g} "
+                         f"(Q*/(mu P) at the end of the ramp: 1 is gross sliding, below "
+                         f"{MIN_FRICTION_RATIO:g} the slip annulus is far below an element), "
+                         f"got {ratio!r}")
+    return ratio
+
+
+def check_increments(increments) -> int:
+    """``increments`` (of the ramp) if it is an integer in [1, :data:`MAX_FRICTION_INCREMENTS`].
+
+    Raises
+    ------
+    ValueError
+        Naming the parameter, the range and the value.
+    """
+    if isinstance(increments, bool) or not isinstance(increments, int) or not (
+            1 <= increments <= MAX_FRICTION_INCREMENTS):
+        raise ValueError(f"friction increments must be an integer from 1 to "
+                         f"{MAX_FRICTION_INCREMENTS} (the ramp's; the loop takes 5N + 1 "
+                         f"increments of ccx, each about 100 s of CPU at level 0), got "
+                         f"{increments!r}")
+    return increments
+
+
+def check_friction(mu, ratio=0.8, increments=DEFAULT_FRICTION_INCREMENTS) -> None:
+    """:func:`check_mu`, :func:`check_ratio` and :func:`check_increments` (before meshing)."""
+    check_mu(mu)
+    check_ratio(ratio)
+    check_increments(increments)
+
+
 def friction_path(model: DeckModel, mu: float, ratio: float = 0.8,
                   increments: int = DEFAULT_FRICTION_INCREMENTS,
                   stick_slope_factor: float = STICK_SLOPE_FACTOR) -> FrictionPath:
@@ -78,11 +149,12 @@ def friction_path(model: DeckModel, mu: float, ratio: float = 0.8,
     model : DeckModel
         A half model of paraboloid-faced blocks (:func:`~.model.half_model`).
     mu : float
-        Coefficient of friction, > 0.
+        Coefficient of friction, in :data:`FRICTION_MU_RANGE` ([0.001, 10]).
     ratio : float
-        Q*/(mu P) at the end of the ramp, in (0, 1).
+        Q*/(mu P) at the end of the ramp, in [:data:`MIN_FRICTION_RATIO`, 1)
+        ([0.001, 1)).
     increments : int
-        Ramp increments, >= 1.
+        Ramp increments, from 1 to :data:`MAX_FRICTION_INCREMENTS` (100).
     stick_slope_factor : float
         Stick slope over the normal penalty slope, > 0.  Default 1: the
         tangential penalty equals the normal one (10 E*/h0), as in
@@ -97,14 +169,12 @@ def friction_path(model: DeckModel, mu: float, ratio: float = 0.8,
     from ..halfspace import cerruti_settlement
     from ..solvers.friction import hertz_direction
 
-    for name, value in (("mu", mu), ("stick_slope_factor", stick_slope_factor)):
-        if not (isinstance(value, int | float) and math.isfinite(value) and value > 0):
-            raise ValueError(f"{name} must be a finite number > 0, got {value!r}")
-    if not (isinstance(ratio, int | float) and 0 < ratio < 1):
-        raise ValueError(f"friction ratio must be in (0, 1) (Q*/(mu P) at the end of the "
-                         f"ramp), got {ratio!r}")
-    if isinstance(increments, bool) or not isinstance(increments, int) or increments < 1:
-        raise ValueError(f"friction increments must be an integer >= 1, got {increments!r}")
+    check_friction(mu, ratio, increments)
+    if isinstance(stick_slope_factor, bool) or not (
+            isinstance(stick_slope_factor, int | float) and math.isfinite(stick_slope_factor)
+            and stick_slope_factor > 0):
+        raise ValueError(f"stick_slope_factor must be a finite number > 0, got "
+                         f"{stick_slope_factor!r}")
     if model.symmetry == "quarter" or model.geometry != "paraboloid-blocks":
         raise ValueError(f"a frictional deck needs the half or whole model of paraboloid-faced "
                          f"blocks (a load along x breaks the symmetry in x = 0), got a "
@@ -115,8 +185,13 @@ def friction_path(model: DeckModel, mu: float, ratio: float = 0.8,
     t = c.tangential(force, mu, hertz_direction(scene, "x"))
     depth = model.info["block_depth"]
     missed = sum(cerruti_settlement(force, b.E, b.nu, depth) for b in (scene.body1, scene.body2))
-    return FrictionPath(float(mu), float(ratio), float(t.displacement) - missed, increments,
-                        stick_slope_factor * model.penalty)
+    peak = float(t.displacement) - missed
+    slope = stick_slope_factor * model.penalty
+    if not (math.isfinite(peak) and peak > 0 and math.isfinite(slope) and slope > 0):
+        raise ValueError(f"scene {scene.name!r}: the tangential path is degenerate (peak "
+                         f"displacement {peak!r} m, stick slope {slope!r} Pa/m): check the "
+                         f"friction options and the scene")
+    return FrictionPath(float(mu), float(ratio), peak, increments, slope)
 
 
 #: The longest scene name written into a deck's comments and title [characters].
@@ -279,7 +354,12 @@ def _friction_steps(model: DeckModel, friction: FrictionPath, ul: float) -> list
     # the reloading goes one increment past the peak, so that the loop closes whatever
     # the force reached there (Masing's memory: the path then continues on the ramp's curve)
     beyond = _g(friction.peak * (1 + 1 / n) * ul)
+    if not 2 * n + 1 <= FRICTION_STEP_INC:
+        raise ValueError(f"friction increments must be at most {(FRICTION_STEP_INC - 1) // 2} "
+                         f"(the reloading's 2N + 1 must fit *STEP, INC={FRICTION_STEP_INC}), "
+                         f"got {n!r}")
     for target, count in ((peak, n), (f"-{peak}", 2 * n), (beyond, 2 * n + 1)):
-        out += ["*STEP, INC=1000", "*STATIC, DIRECT", f"{_g(1 / count)}, 1.", "*BOUNDARY",
+        out += [f"*STEP, INC={FRICTION_STEP_INC}", "*STATIC, DIRECT", f"{_g(1 / count)}, 1.",
+                "*BOUNDARY",
                 f"MOVED, 1, 1, {target}", *output, "*END STEP"]
     return out

@@ -39,6 +39,14 @@ TET10_EDGES = ((0, 1), (1, 2), (2, 0), (0, 3), (1, 3), (2, 3))
 TET_FACES = ((0, 1, 2), (0, 3, 1), (1, 3, 2), (2, 3, 0))
 #: Penalty stiffness of the contact over E* / h0 (h0 the element size at the contact).
 PENALTY_FACTOR = 10.0
+#: The penalty factors a deck takes, [low, high].  The overclosure at the contact's centre,
+#: p0 h0 / (factor E*), is 0.05 to 0.13 of Hertz's approach over the factor at the deck
+#: levels 0-2 (0.5-1.3% at the default 10): at 0.1 it is the approach itself, so that the
+#: penalty, not Hertz, sets the contact.  Above 1e6 the contact is a million times stiffer
+#: than the elements (E/h0): the system's condition number grows by as much, a
+#: double-precision solve keeps about 10 digits, and the overclosure (1e-7 of the approach)
+#: is far below anything a grade sees.
+PENALTY_FACTOR_RANGE = (0.1, 1e6)
 #: _EDGE_OF[i, j]: the C3D10 mid-side node (minus 4) between vertices i and j.
 _EDGE_OF = np.full((4, 4), -1)
 for _k, (_i, _j) in enumerate(TET10_EDGES):
@@ -267,14 +275,29 @@ def check_scene(scene: Scene) -> hertz.Contact:
     return c
 
 
+def check_penalty_factor(penalty_factor) -> float:
+    """``penalty_factor`` (the penalty slope over E*/h0) if it is in :data:`PENALTY_FACTOR_RANGE`.
+
+    Raises
+    ------
+    ValueError
+        Naming the parameter, the range and the value.
+    """
+    low, high = PENALTY_FACTOR_RANGE
+    if isinstance(penalty_factor, bool) or not isinstance(penalty_factor, int | float) or not (
+            math.isfinite(penalty_factor) and low <= penalty_factor <= high):
+        raise ValueError(f"penalty_factor must be a finite number > 0 in [{low:g}, {high:g}] "
+                         f"(the penalty slope over E*/h0: below {low:g} the overclosure "
+                         f"exceeds Hertz's approach, above {high:g} the contact swamps the "
+                         f"elements' stiffness), got {penalty_factor!r}")
+    return penalty_factor
+
+
 def _check_options(slave_body, penalty_factor) -> None:
     """The options of a model, checked before anything is meshed."""
     if slave_body not in (1, 2) or isinstance(slave_body, bool):
         raise ValueError(f"slave_body must be 1 or 2, got {slave_body!r}")
-    if isinstance(penalty_factor, bool) or not isinstance(penalty_factor, int | float) or not (
-            math.isfinite(penalty_factor) and penalty_factor > 0):
-        raise ValueError(f"penalty_factor must be a finite number > 0 (the penalty slope over "
-                         f"E*/h0), got {penalty_factor!r}")
+    check_penalty_factor(penalty_factor)
 
 
 # --------------------------------------------------------------------------- curved
@@ -567,6 +590,49 @@ def half_model(quarter: DeckModel) -> DeckModel:
                      {**quarter.info, "symmetry": "half"})
 
 
+def check_model(scene: Scene, level: int, model: str = "auto", slave_body: int = 1,
+                penalty_factor: float = PENALTY_FACTOR) -> str:
+    """Check what :func:`build_model` is given, without meshing; the geometry it would build.
+
+    The model's name, the slave body, the penalty factor
+    (:data:`PENALTY_FACTOR_RANGE`), the scene's target load and contact size
+    (:func:`check_scene`, and :func:`block_extent` for paraboloid-faced blocks), the
+    symmetry a quarter or half model of blocks needs, and the mesh level: 0-4 for true
+    curved bodies (:data:`fem_validation.solvers.curved_mesh.CURVED_LEVELS`), 0-5 for
+    the blocks (:data:`fem_validation.solvers.mesh.LEVEL_SCALE`).
+
+    Returns
+    -------
+    str
+        "sphere-plane" or "ball-groove" (true curved bodies), or "paraboloid-blocks".
+
+    Raises
+    ------
+    ValueError
+        Naming the parameter or the scene, the value and what is allowed.
+    """
+    from ..solvers.curved_mesh import CURVED_LEVELS
+    from ..solvers.mesh import LEVEL_SCALE
+
+    if model not in ("auto", "quarter", "half", "whole"):
+        raise ValueError(f"model must be 'auto', 'quarter', 'half' or 'whole', got {model!r}")
+    _check_options(slave_body, penalty_factor)
+    check_scene(scene)
+    curved = curved_scene_for(scene) if model in ("auto", "quarter") else None
+    if curved is not None:
+        geometry, levels = curved.name, tuple(CURVED_LEVELS)
+    else:
+        geometry, levels = "paraboloid-blocks", tuple(sorted(LEVEL_SCALE))
+        if model in ("quarter", "half") and not scene.symmetric:
+            raise ValueError(f"scene {scene.name!r} has no quarter symmetry (principal planes "
+                             f"at {math.degrees(scene.angle):g} deg): use --model whole")
+        block_extent(scene)
+    if isinstance(level, bool) or not isinstance(level, int) or level not in levels:
+        raise ValueError(f"level must be one of {list(levels)} (the mesh levels of "
+                         f"{geometry}), got {level!r}")
+    return geometry
+
+
 def build_model(scene: Scene, level: int, model: str = "auto", slave_body: int = 1,
                 penalty_factor: float = PENALTY_FACTOR) -> DeckModel:
     """The deck model of a scene: true curved bodies where possible, else paraboloid blocks.
@@ -585,21 +651,18 @@ def build_model(scene: Scene, level: int, model: str = "auto", slave_body: int =
     slave_body : {1, 2}
         The body whose contact face is the slave surface.
     penalty_factor : float
-        Penalty slope over E*/h0, finite and > 0.
+        Penalty slope over E*/h0, in :data:`PENALTY_FACTOR_RANGE` ([0.1, 1e6]).
 
     Raises
     ------
     ValueError
-        Before gmsh runs: a target load that is not a finite number > 0, a
-        contact outside 1e-5 <= a/R_min <= 0.0375 (0.5 for a ball on a plane or
-        in a groove: :func:`check_scene`, :func:`block_extent`), a mesh of more
+        Before gmsh runs (:func:`check_model`): a target load that is not a finite
+        number > 0, a contact outside 1e-5 <= a/R_min <= 0.0375 (0.5 for a ball on a
+        plane or in a groove: :func:`check_scene`, :func:`block_extent`), a mesh of more
         than :data:`fem_validation.solvers.mesh.MAX_MESH_NODES` vertices, or an option
-        out of range.
+        out of range (a level outside the geometry's).
     """
-    if model not in ("auto", "quarter", "half", "whole"):
-        raise ValueError(f"model must be 'auto', 'quarter', 'half' or 'whole', got {model!r}")
-    _check_options(slave_body, penalty_factor)
-    check_scene(scene)
+    check_model(scene, level, model, slave_body, penalty_factor)
     if model == "half":
         # paraboloid-faced blocks: the tangential displacement's correction for the
         # clamped far faces (Cerruti at the block's depth) is a block's
