@@ -1051,16 +1051,54 @@ def _check_size(a, body1: Body, body2: Body, axis: str = "a") -> None:
         smallest = bound
         large = a > cut
     else:
-        radii = [np.abs(r) for r in radii]
-        smallest = np.minimum(np.minimum(radii[0], radii[1]), np.minimum(radii[2], radii[3]))
-        with np.errstate(over="ignore", invalid="ignore"):
-            large = a * _INVERSE_LIMIT > smallest
+        large = _beyond_limit(a, radii)
+        if not large.any():
+            return
+        smallest = np.minimum(np.minimum(np.abs(radii[0]), np.abs(radii[1])),
+                              np.minimum(np.abs(radii[2]), np.abs(radii[3])))
     count = int(np.count_nonzero(large))
     if count:
         shape = np.shape(large)
         with np.errstate(over="ignore", invalid="ignore", divide="ignore"):
             ratio = np.where(large, a / smallest, -np.inf)
         _warn_size(a, body1, body2, axis, shape, int(np.argmax(ratio.reshape(-1))), count)
+
+
+#: Elements per block of _beyond_limit: its buffers stay in the cache.
+_BLOCK = 16384
+
+
+def _beyond_limit(a, radii) -> np.ndarray:
+    """``a / A_OVER_R_LIMIT > |R|`` for any of the four radii, elementwise (the scalar
+    test's operations, so the same bits), in blocks that keep the temporaries in the
+    cache: the check costs a small fraction of the contact it guards."""
+    shape = np.broadcast_shapes(np.shape(a), *(np.shape(r) for r in radii))
+    flat = [np.broadcast_to(x, shape).reshape(-1) if np.shape(x) == shape else None
+            for x in (a, *radii)]
+    out = np.zeros(shape, dtype=bool)
+    if any(f is None for f in flat):  # some input broadcast: the plain form
+        with np.errstate(over="ignore", invalid="ignore"):
+            t = np.multiply(a, _INVERSE_LIMIT)
+            for r in radii:
+                out |= np.abs(r) < t
+        return out
+    a_flat, r_flat = flat[0], flat[1:]
+    o = out.reshape(-1)
+    n = a_flat.size
+    t = np.empty(min(n, _BLOCK))
+    m = np.empty_like(t)
+    hit = np.empty(t.size, dtype=bool)
+    with np.errstate(over="ignore", invalid="ignore"):
+        for start in range(0, n, _BLOCK):
+            stop = min(n, start + _BLOCK)
+            k = stop - start
+            np.multiply(a_flat[start:stop], _INVERSE_LIMIT, out=t[:k])
+            ob = o[start:stop]
+            for r in r_flat:
+                np.abs(r[start:stop], out=m[:k])
+                np.less(m[:k], t[:k], out=hit[:k])
+                ob |= hit[:k]
+    return out
 
 
 def _cutoff(radius: float) -> float:
