@@ -46,6 +46,7 @@ Errors are (result - Hertz) / Hertz.
 from __future__ import annotations
 
 import math
+import warnings
 from collections.abc import Callable, Mapping
 from dataclasses import dataclass, field
 from types import SimpleNamespace
@@ -138,6 +139,10 @@ CURVE_METRICS = {
 #: integrator's overlap lagging the force by a step.
 CURVE_TOLERANCES = {"force_rel_err_max": 0.01, "force_rel_err_rms": 0.01,
                     "exponent_err": 0.01}
+#: A force whose ratio to Hertz's lies beyond exp(LOG_FLOAT_MAX) (1e304; the largest float
+#: is 1.8e308) has left the range of floating-point numbers: :func:`grade_force_approach`
+#: refuses it as out of range rather than report an infinite error.
+LOG_FLOAT_MAX = 700.0
 
 
 @dataclass(frozen=True)
@@ -232,6 +237,10 @@ class Grade(GradeMethods):
     hint : str
         Where the result looks off by a power of 1000 (a unit mistake): what is off, by
         how much, and the likely cause (:func:`unit_hint`); "" otherwise.
+    notes : tuple of str
+        What the reader of the grade should know that is not a check: Hertz's own
+        validity warning where the contact graded is too large for the theory
+        (:func:`hertz_quietly`).
     """
 
     scene: str
@@ -249,17 +258,18 @@ class Grade(GradeMethods):
     axis_stress: dict = field(default_factory=dict, repr=False)
     details: dict = field(default_factory=dict)
     hint: str = ""
+    notes: tuple = ()
 
     def to_dict(self) -> dict:
         """grade.json: force, the metrics at the top level, passed, the unit hint, checks,
-        details."""
+        details, notes."""
         return nan_to_none({
             "scene": self.scene, "source": self.source, "force": self.force,
             "symmetry": self.symmetry, "semi_axes": self.semi_axes, **self.metrics,
             "passed": self.passed, "hint": self.hint,
             "checks": [c.to_dict() for c in self.checks],
             "hertz": self.hertz, "fem": self.fem, "stress": self.stress,
-            "details": self.details})
+            "details": self.details, "notes": list(self.notes)})
 
 
 def nan_to_none(value):
@@ -278,6 +288,37 @@ def nan_to_none(value):
     if isinstance(value, np.bool_):
         return bool(value)
     return value
+
+
+def hertz_quietly(hertz_at: Callable, value) -> tuple:
+    """``hertz_at(value)`` with Hertz's validity warning taken as a note, not printed.
+
+    A grade evaluates Hertz where the result is (its force, its approaches), and a result
+    too large for the theory (a/R beyond hertz's limit, often a unit mistake) makes
+    ``hertz.contact`` issue :class:`hertz.HertzValidityWarning`.  A grader reports it in
+    the grade (``notes``), once, instead of letting it reach stderr; every other warning
+    is issued again as it came.
+
+    Returns
+    -------
+    (contact, list of str)
+        What ``hertz_at`` returned and the validity warnings' messages, each prefixed
+        "Hertz's validity: ".
+    """
+    import hertz
+
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always", hertz.HertzValidityWarning)
+        c = hertz_at(value)
+    notes = []
+    for w in caught:
+        if issubclass(w.category, hertz.HertzValidityWarning):
+            note = f"Hertz's validity: {w.message}"
+            if note not in notes:
+                notes.append(note)
+        else:
+            warnings.warn_explicit(w.message, w.category, w.filename, w.lineno)
+    return c, notes
 
 
 # --- a result off by a power of 1000: a unit mistake -------------------------------------
@@ -774,8 +815,14 @@ def _tolerances(tolerances: Mapping[str, float] | None, defaults=None,
         if name not in metrics:
             raise ValueError(f"tolerances: unknown metric {name!r}; known: "
                              f"{', '.join(sorted(metrics))}")
-        if not (isinstance(value, int | float) and value > 0 and math.isfinite(value)):
-            raise ValueError(f"tolerances: {name} must be a finite number > 0, got {value!r}")
+        try:  # an int beyond the range of a float is not finite either
+            finite = math.isfinite(value) if isinstance(value, int | float) else False
+        except OverflowError:
+            finite = False
+        if isinstance(value, bool) or not (finite and value > 0):
+            shown = (f"an integer of about {int(abs(value).bit_length() * math.log10(2)) + 1} "
+                     f"digits" if isinstance(value, int) and not finite else repr(value))
+            raise ValueError(f"tolerances: {name} must be a finite number > 0, got {shown}")
     return tol
 
 
@@ -814,6 +861,11 @@ def _sanity(result: ContactResult, c, xy, force_nodes, area, where: str, moments
         raise ResultError(f"{where}the nodal contact forces sum to {total:.6g} N with "
                           f"symmetry {result.symmetry!r}, the force is {result.force:.6g} N: "
                           f"units or symmetry contradict each other{hint}")
+    if result.approach is not None and not math.isfinite(result.approach / c.delta):
+        raise ResultError(f"{where}the approach {result.approach:.6g} m is out of range: its "
+                          f"ratio to Hertz's {c.delta:.6g} m at {result.force:.6g} N "
+                          f"overflows; check the approach (problem.json's loads.approach for "
+                          f"a CalculiX run) and its unit{hint}")
     for name, value, hz in (("semi-major axis", moments["a"], c.a),
                             ("semi-minor axis", moments["b"], c.b)):
         if not 1 / MISMATCH < value / hz < MISMATCH:
@@ -879,7 +931,7 @@ def grade(result: ContactResult, scene, tolerances: Mapping[str, float] | None =
         raise ValueError(f"semi_axes must be 'auto', 'moments' or 'fit', got {semi_axes!r}")
     tol = _tolerances(tolerances)
     where = f"{result.source}: " if result.source else ""
-    c = (scene.hertz if hertz_at is None else hertz_at)(result.force)
+    c, notes = hertz_quietly(scene.hertz if hertz_at is None else hertz_at, result.force)
     xy = result.xy
     symmetric = result.symmetry != "whole"
     mirrored = _mirror_axes(result.symmetry, xy)
@@ -979,7 +1031,7 @@ def grade(result: ContactResult, scene, tolerances: Mapping[str, float] | None =
              "pressure_integral": integral, "approach": result.approach,
              "reaction": result.reaction},
         profiles=prof, stress=stress_out, axis_stress=axis, details=dict(result.details),
-        hint=hint)
+        hint=hint, notes=tuple(notes))
 
 
 def _checks(metrics: dict, tol: dict, names, by_construction=()) -> tuple:
@@ -1016,12 +1068,20 @@ def grade_force_approach(approach, force, scene, tolerances: Mapping[str, float]
         Default :data:`CURVE_TOLERANCES`.
     hertz_at : callable, optional
         approach [m] -> the Hertz contact (default ``hertz.contact(body1, body2,
-        approach=..., angle=scene.angle)``); a wrong one must fail.
+        approach=..., angle=scene.angle)``); a wrong one must fail.  It is called once
+        with the array of the approaches graded (its ``load`` an array of the same
+        shape), and once with the largest.
 
     Raises
     ------
     ResultError
-        Fewer than 2 points in contact, NaN, negative forces.
+        Fewer than 2 points in contact, NaN, negative forces; approaches whose Hertz force
+        overflows or underflows, forces beyond 1e304 times Hertz's (out of range).
+
+    Notes
+    -----
+    Hertz's validity warning (an approach too large for the theory, a/R above hertz's
+    limit) is not issued: it is one of the grade's ``notes``.
     """
     import hertz
 
@@ -1048,26 +1108,49 @@ def grade_force_approach(approach, force, scene, tolerances: Mapping[str, float]
     if hertz_at is None:
         def hertz_at(delta):
             return hertz.contact(scene.body1, scene.body2, approach=delta, angle=scene.angle)
-    ref = np.array([hertz_at(x).load for x in d])
-    err = f / ref - 1
+    # Hertz once for every approach (its validity warning, once, becomes a note)
+    hz, notes = hertz_quietly(hertz_at, d)
+    ref = np.asarray(hz.load, dtype=float)
+    if ref.shape != d.shape:
+        raise TypeError(f"hertz_at must take the array of approaches (shape {d.shape}) and "
+                        f"give a contact whose load has that shape, got {ref.shape}")
+    for bad, words in ((~np.isfinite(ref), "overflows"), (ref <= 0, "underflows to 0 N")):
+        if bad.any():
+            k = int(np.argmax(bad))
+            raise ResultError(f"{where}Hertz's force at approach {d[k]:.6g} m {words} "
+                              f"(F ~ delta^1.5 leaves the range of floating-point numbers): "
+                              f"the approaches are out of range for this scene; check the "
+                              f"approach column and its unit")
+    # (F - F_Hertz) / F_Hertz through the logarithms, so that no quotient overflows
+    log_ratio = np.log(f) - np.log(ref)
+    if log_ratio.max() > LOG_FLOAT_MAX:
+        k = int(np.argmax(log_ratio))
+        raise ResultError(f"{where}the force {f[k]:.6g} N at approach {d[k]:.6g} m is "
+                          f"1e{log_ratio[k] / math.log(10):.0f} times Hertz's {ref[k]:.6g} N, "
+                          f"beyond the range of floating-point numbers: the forces are out of "
+                          f"range for this scene; check the force column and its unit")
+    err = np.expm1(log_ratio)
     # the least-squares scale of Hertz's law, log F = log F_Hertz + log scale: a length
     # read 1000x too large gives 1000**-1.5
-    scale = float(np.exp(np.mean(np.log(f / ref))))
+    scale = float(np.exp(np.mean(log_ratio)))
     slope = np.polyfit(np.log(d), np.log(f), 1)[0] if len(np.unique(d)) > 1 else math.nan
+    largest = float(np.abs(err).max())
+    rms = largest * float(np.sqrt(np.mean((err / largest) ** 2))) if largest > 0 else 0.0
     metrics = {"force_rel_err_max": float(_worst(list(err))),
-               "force_rel_err_rms": float(np.sqrt(np.mean(err**2))),
+               "force_rel_err_rms": rms,
                "exponent_err": float(slope - 1.5)}
     checks = _checks(metrics, tol, CURVE_METRICS)
-    c = hertz_at(d.max())
+    k = int(np.argmax(d))
+    c, _ = hertz_quietly(hertz_at, float(d[k]))  # its validity: in the notes already
     return Grade(scene=getattr(scene, "name", ""), source=source, force=float(f.max()),
                  symmetry="whole", semi_axes="-", metrics=metrics, checks=checks,
                  passed=all(ch.status != "fail" for ch in checks),
                  hertz={"a": c.a, "b": c.b, "p0": c.p0, "delta": c.delta,
-                        "alpha": float(c.alpha), "load_at_largest_approach": c.load},
+                        "alpha": float(c.alpha), "load_at_largest_approach": float(ref[k])},
                  fem={"approach": d, "force": f, "hertz_force": ref, "rel_err": err,
                       "scale_of_hertz_law": scale},
                  details={"kind": "force-approach", "points": int(d.size)},
-                 hint=unit_hint([("curve_force", scale)]))
+                 hint=unit_hint([("curve_force", scale)]), notes=tuple(notes))
 
 
 #: The targets of the default level (issue 9): |error| at most these.  The issue sets no

@@ -79,6 +79,7 @@ from .contact import (
     _worst,
     check_symmetry_sides,
     fit_ellipse,
+    hertz_quietly,
     nan_to_none,
     pressure_profiles,
     unit_hint,
@@ -89,6 +90,11 @@ BISECTION_STEPS = 64
 #: A path force beyond (1 + FORCE_SLACK) mu P is not a model of this contact (units,
 #: symmetry or mu contradict each other): bad input.
 FORCE_SLACK = 0.05
+#: A path whose largest |force| stays below MIN_FORCE_FRACTION mu P holds no measurable
+#: partial slip (the loop's area is about Q / (mu P) of Q delta, lost in the rounding of the
+#: columns it is computed from; far below, Mindlin's loop energy underflows to 0): the force
+#: unit, mu or the normal force is wrong, bad input.
+MIN_FORCE_FRACTION = 1e-6
 
 #: Default tolerances of :func:`grade_tangential` (|value| at most this): issue 17's
 #: targets for the stick zone (2%), the force against displacement (1%) and the loop
@@ -345,6 +351,20 @@ def _sanity(result: TangentialResult, c, xy, area, where: str, fit: dict,
                               f"{hint}")
     limit = result.mu * result.normal_force
     worst = int(np.argmax(np.abs(result.force)))
+    path = result.details.get("history") or result.source or "the path"
+    if not 0 < limit < math.inf:
+        raise ResultError(f"{where}mu = {result.mu:.6g} times the normal force "
+                          f"{result.normal_force:.6g} N is out of range (mu P "
+                          f"{'overflows' if limit else 'underflows to 0'}): check mu and the "
+                          f"normal force{hint}")
+    largest = abs(float(result.force[worst]))
+    if not largest >= MIN_FORCE_FRACTION * limit:
+        raise ResultError(f"{path}: the tangential force never exceeds {largest:.6g} N, "
+                          f"{largest / limit:.3g} of mu P = {limit:.6g} N (mu = "
+                          f"{result.mu:.6g}, P = {result.normal_force:.6g} N; below "
+                          f"{MIN_FORCE_FRACTION:g}): too small "
+                          f"to grade against Mindlin; check the force column and its unit, "
+                          f"mu and the normal force{hint}")
     if abs(result.force[worst]) > (1 + FORCE_SLACK) * limit:
         raise ResultError(f"{where}the tangential force {result.force[worst]:.6g} N at path "
                           f"index {worst} exceeds mu P = {limit:.6g} N by more than "
@@ -414,7 +434,8 @@ def grade_tangential(result: TangentialResult, scene,
     """
     tol = _tolerances(tolerances, DEFAULT_TOLERANCES, METRICS)
     where = f"{result.source}: " if result.source else ""
-    c = (scene.hertz if hertz_at is None else hertz_at)(result.normal_force)
+    c, validity = hertz_quietly(scene.hertz if hertz_at is None else hertz_at,
+                                result.normal_force)
     mu, P = result.mu, float(c.load)
     limit = mu * P
     theta = float(c.major_axis_angle)
@@ -429,7 +450,7 @@ def grade_tangential(result: TangentialResult, scene,
     _sanity(result, c, xy, area, where, pressure_fit, hint)
     p, q, q_perp = result.pressure, result.shear_along, result.shear_across
     scale = mu * c.p0
-    notes = []
+    notes = list(validity)
 
     # --- the path: ramp, unloading, reloading -------------------------------------------
     d, path_q = result.displacement, result.force
@@ -475,8 +496,8 @@ def grade_tangential(result: TangentialResult, scene,
             q_star = float(abs(path_q[i1]))
             notes.append("the path has one reversal: the unloading branch is graded, there "
                          "is no reloading branch and no closed loop (no loop energy)")
-        branch_err = (float(np.abs(path_q[graded] - q_ref[graded]).max() / q_star) if graded
-                      else math.nan)
+        branch_err = (float(np.abs(path_q[graded] - q_ref[graded]).max() / q_star)
+                      if graded and q_star > 0 else math.nan)
         if len(rev) > 1:
             loop = _closing_loop(d, path_q, i1, i2, end)
             if loop is None:
@@ -486,7 +507,11 @@ def grade_tangential(result: TangentialResult, scene,
             else:
                 w_fem = loop_energy(*loop)
                 w_ref = float(c.fretting(min(q_star, limit), mu, along).energy)
-                energy_err = w_fem / w_ref - 1
+                if w_ref > 0:
+                    energy_err = w_fem / w_ref - 1
+                else:
+                    notes.append(f"Mindlin-Deresiewicz's loop energy at Q* = {q_star:.6g} N "
+                                 f"underflows to 0 J: no loop energy")
                 asym = abs(d[i2]) / d[i1] - 1
                 if abs(asym) > 0.01:
                     notes.append(f"the loop is not symmetric (second reversal at "

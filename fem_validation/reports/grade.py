@@ -3,14 +3,46 @@
 
 from __future__ import annotations
 
+import contextlib
 import json
 import math
+import warnings
 from pathlib import Path
 
 import numpy as np
 
 SIGN_CONVENTION = ("Errors are (result - Hertz) / Hertz, Hertz evaluated at the force the "
                    "result reached (matched force); RMS values are fractions of Hertz's p0.")
+
+
+def grade_json(row: dict) -> str:
+    """The text of grade.json: strict JSON (no NaN, no Infinity; a metric that is not
+    defined is null, :func:`fem_validation.grading.contact.nan_to_none`).
+
+    Raises
+    ------
+    RuntimeError
+        Where a number is not finite: a grader let an overflow through, a defect (exit
+        status 3), never a file that other tools cannot read.
+    """
+    try:
+        return json.dumps(row, indent=1, default=float, allow_nan=False)
+    except ValueError as exc:
+        raise RuntimeError(f"grade.json would hold a non-finite number ({exc}); the grader "
+                           f"should have refused the input or reported null") from None
+
+
+@contextlib.contextmanager
+def quiet_figure():
+    """Draw a figure without warnings on stderr (a context manager and a decorator).
+
+    The numbers a figure shows are the grade's, checked finite; what matplotlib or numpy
+    may still say while scaling axes over a wide range (ticks near the largest float, a
+    layout that does not fit) concerns the picture only, and a command prints one line.
+    """
+    with warnings.catch_warnings(), np.errstate(all="ignore"):
+        warnings.simplefilter("ignore")
+        yield
 
 
 def _fmt(name: str, value: float) -> str:
@@ -94,6 +126,9 @@ def grade_markdown(g, command: str = "") -> str:
     lines += ["", "## Verdict", "",
               ("PASSED: every checked metric is within its tolerance." if g.passed else
                f"FAILED: {', '.join(failed)} outside the tolerance.")]
+    notes = getattr(g, "notes", ())
+    if notes:
+        lines += ["", "## Notes", ""] + [f"- {n}" for n in notes]
     if not curve:
         lines += ["", "## Method", "", "See `fem_validation.grading.contact`: a, b from the second "
                   "moments of the nodal forces (sum f x^2 = P a^2/5 for Hertz's pressure) or "
@@ -160,6 +195,7 @@ def plot_checks(ax, checks, metrics_doc: dict, fmt=None, tol=None) -> None:
     ax.set_title("checks (green pass, red fail)", fontsize=10)
 
 
+@quiet_figure()
 def plot_grade(g, path: Path) -> Path:
     """grade.png: the pressure along Hertz's axes (or, for a force-approach curve, the
     force and its error) above the checks; titled with the result's file name, the verdict
@@ -229,7 +265,7 @@ def write_grade(g, out: Path, command: str = "") -> tuple[Path, Path, Path]:
         row["command"] = command
     if g.details.get("kind") == "force-approach":
         row["fem"] = {k: (v.tolist() if hasattr(v, "tolist") else v) for k, v in g.fem.items()}
-    paths[0].write_text(json.dumps(row, indent=1, default=float))
+    paths[0].write_text(grade_json(row))
     paths[1].write_text(grade_markdown(g, command))
     plot_grade(g, paths[2])
     return paths

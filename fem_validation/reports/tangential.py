@@ -9,6 +9,7 @@ import numpy as np
 
 from ..grading.contact import FIT_THRESHOLD
 from ..grading.tangential import METRICS, TangentialGrade
+from .grade import quiet_figure
 
 
 def _fmt(name: str, value) -> str:
@@ -80,6 +81,7 @@ def grade_markdown(g: TangentialGrade, command: str = "") -> str:
     return "\n".join(lines) + "\n"
 
 
+@quiet_figure()
 def plot_grade(g: TangentialGrade, path: Path) -> Path:
     """grade.png: traction profiles along both axes against Cattaneo-Mindlin, the
     force-displacement loop against Masing, and the checks; titled with the result's file
@@ -157,7 +159,7 @@ def plot_grade(g: TangentialGrade, path: Path) -> Path:
 
 def write_grade(g: TangentialGrade, out, command: str = "") -> tuple[Path, Path, Path]:
     """DIR/grade.json, DIR/grade.md and DIR/grade.png of a TangentialGrade (DIR created)."""
-    import json
+    from .grade import grade_json
 
     out = Path(out)
     out.mkdir(parents=True, exist_ok=True)
@@ -165,7 +167,7 @@ def write_grade(g: TangentialGrade, out, command: str = "") -> tuple[Path, Path,
     row = g.to_dict()
     if command:
         row["command"] = command
-    paths[0].write_text(json.dumps(row, indent=1, default=float))
+    paths[0].write_text(grade_json(row))
     paths[1].write_text(grade_markdown(g, command))
     plot_grade(g, paths[2])
     return paths
