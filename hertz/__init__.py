@@ -14,6 +14,7 @@ Conventions used throughout:
 import dataclasses as _dataclasses
 import inspect as _inspect
 
+from ._build_info import show_config
 from ._contact import (
     A_OVER_R_LIMIT,
     Body,
@@ -42,7 +43,7 @@ __all__ = ["A_OVER_R_LIMIT", "Body", "Contact", "FrettingLoop", "HertzValidityWa
            "LineContact", "LineSubsurface", "LoadPath", "LoadPathSpring", "SlidingMaxima",
            "Subsurface", "Tangential", "TangentialSpring", "contact", "dundurs_beta",
            "ellipticity", "line_contact", "load_path", "proportional_loading",
-           "tangential_compliance", "tangential_history"]
+           "show_config", "tangential_compliance", "tangential_history"]
 __version__ = "0.1.0"
 #: Public names imported when first used: hertz._friction needs scipy, which ``import
 #: hertz`` does not load.

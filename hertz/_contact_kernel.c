@@ -76,7 +76,7 @@
 
 /* 2^e for an integer-valued e in [-1022, 1023]: the bits of e + 1023 + 2^52,
  * shifted into the exponent field. */
-static inline double
+HERTZ_INLINE double
 pow2(double e)
 {
     return as_double(as_bits(e + (1023.0 + 0x1p52)) << 52);
@@ -84,7 +84,7 @@ pow2(double e)
 
 /* x 2^e (e integer-valued), rounded once where the result is normal: two
  * exact steps whose intermediate lies between x and the result. */
-static inline double
+HERTZ_INLINE double
 scale2(double x, double e)
 {
     e = e < -2044.0 ? -2044.0 : (e > 2046.0 ? 2046.0 : e);
@@ -115,21 +115,29 @@ exponent_of(double x)
     return ilogb(x);
 }
 
+/* Whether any of flags[0..n) (each 0.0 or 1.0) is set.  The block loops store
+ * their flags and this loop ORs the bit patterns apart: a reduction inside the
+ * loops (a conditional assignment, which GCC 12 vectorises and Clang 14 does
+ * not, or an OR of integers, the other way round) would keep one of the two
+ * compilers from vectorising them. */
+HERTZ_INLINE int
+any_flag(ptrdiff_t n, const double *flags)
+{
+    uint64_t any = 0;
+    for (ptrdiff_t i = 0; i < n; ++i) { /* vectorised */
+        any |= as_bits(flags[i]);
+    }
+    return any != 0;
+}
+
 /* ------------------------------------------------ double-double arithmetic */
 
-/* Inlined into each caller, so that a constant `fused` argument selects the
- * code at compile time. */
-#if defined(__GNUC__)
-#define HERTZ_INLINE static inline __attribute__((always_inline))
-#elif defined(_MSC_VER)
-#define HERTZ_INLINE static __forceinline
-#else
-#define HERTZ_INLINE static inline
-#endif
-
-/* a b = p + err exactly: with a fused multiply-add (fused = 1, only where the
- * processor has one, see hertz_fma_available) or by Dekker's splitting
- * (1971).  Both are exact, so both give the same bits. */
+/* HERTZ_INLINE (hertz/_kernel.h): inlined into each caller, so that a constant
+ * `fused` argument selects the code at compile time.
+ *
+ * a b = p + err exactly: with a fused multiply-add (fused = 1, only where the
+ * processor has one: the AVX2 and AVX-512 paths, aarch64) or by Dekker's
+ * splitting (1971).  Both are exact, so both give the same bits. */
 HERTZ_INLINE void
 veltkamp(double a, double *hi, double *lo)
 {
@@ -182,7 +190,7 @@ dd_scale(double c, double h, double l, const int fused)
 }
 
 /* a + b = s + err exactly (Knuth), either order of a and b. */
-static inline double
+HERTZ_INLINE double
 two_sum(double a, double b, double *err)
 {
     double s = a + b, bb = s - a;
@@ -192,7 +200,7 @@ two_sum(double a, double b, double *err)
 
 /* (ah + al) + (bh + bl) as a double-double, to 2^-104 relative however much
  * the two cancel. */
-static inline double
+HERTZ_INLINE double
 dd_add(double ah, double al, double bh, double bl, double *lo)
 {
     double e, s = two_sum(ah, bh, &e), f, t = two_sum(al, bl, &f);
@@ -214,7 +222,7 @@ dd_add(double ah, double al, double bh, double bl, double *lo)
  * accuracy however small it is, and both are even in x exactly. */
 #define FAST_ANGLE 1e5
 
-static inline void
+HERTZ_INLINE void
 sin2_cos2(double x, double *sin2_x, double *cos2_x)
 {
     double k, r = reduce_half_pi(x, &k), z = r * r;
@@ -275,7 +283,7 @@ sin2_cos2_dd(double x, double ss[2], double cc[2])
  * Chebyshev nodes, error 3.9e-5) times 2^(-j/3), then two Newton steps
  * r <- r (4 - x r^3)/3 (error 3e-9, then rounding).  The caller's
  * double-double step completes the cube root. */
-static inline double
+HERTZ_INLINE double
 inverse_cube_root(double m, double j)
 {
     const double C0 = 0.8735853831770144, C1 = -0.1938092862297736,
@@ -325,6 +333,7 @@ curvature_terms(double r1x, double r1y, double r2x, double r2y, double p[6], dou
                               {w1x * u2y, w2y * u1x}, {w1y * u2x, w2x * u1y}};
     const double product[6][2] = {{u1y, u2y}, {u1x, u2x}, {u2x, u2y},
                                   {u1x, u1y}, {u1y, u2x}, {u1x, u2y}};
+    HERTZ_UNROLL(6)
     for (int k = 0; k < 6; ++k) {
         p[k] = sum[k][0];
         q[k] = sum[k][1];
@@ -336,12 +345,13 @@ curvature_terms(double r1x, double r1y, double r2x, double r2y, double p[6], dou
     return pi < 0.0 ? -1.0 : 1.0;
 }
 
-static inline void
+HERTZ_INLINE void
 curvature_products(double r1x, double r1y, double r2x, double r2y, double *sx, double *sy,
                    double *g1, double *g2, double *cx, double *cy, double *pabs)
 {
     double p[6], q[6], a[6], b[6], v[6];
     double sign = curvature_terms(r1x, r1y, r2x, r2y, p, q, a, b, pabs);
+    HERTZ_UNROLL(6)
     for (int k = 0; k < 6; ++k) {
         v[k] = sign * (p[k] + q[k]) * (a[k] * b[k]);
     }
@@ -376,7 +386,7 @@ curvature_determinant(double sx, double sy, double cx, double cy, double gg, dou
 
 /* Whether rho_x + rho_y or rho_x rho_y, eq. (1'), loses more than one bit to
  * cancellation (then the scalar code recomputes them in double-double). */
-static inline int
+HERTZ_INLINE int
 cancels(double sx, double sy, double trace, double det, double terms)
 {
     return fabs(trace) < 0.5 * (fabs(sx) + fabs(sy)) || fabs(det) < 0.5 * terms;
@@ -727,18 +737,17 @@ typedef struct {
  * coincide, rho_x and rho_y are the pair sums (no sine, no square root, no
  * det/rho_x), with the bits the general code gives at angle 0. */
 HERTZ_INLINE double
-fast_geometry_body(ptrdiff_t n, const double *const in[HERTZ_NGEOMETRY], stage1 *restrict s,
-                   const int aligned)
+fast_geometry_common(ptrdiff_t n, const double *const in[HERTZ_NGEOMETRY], stage1 *restrict s,
+                     const int aligned)
 {
     const double *restrict R1X = in[HERTZ_R1X], *restrict R1Y = in[HERTZ_R1Y];
     const double *restrict R2X = in[HERTZ_R2X], *restrict R2Y = in[HERTZ_R2Y];
     const double *restrict ANGLE = in[HERTZ_ANGLE];
     const double lo = 0x1p-240, hi = 0x1p240;
-    double any = 0.0;
 #if RADIUS_RANGE != 240
 #error "lo and hi are 2^-+RADIUS_RANGE"
 #endif
-    for (ptrdiff_t i = 0; i < n; ++i) {
+    for (ptrdiff_t i = 0; i < n; ++i) { /* vectorised */
         double r1x = R1X[i], r1y = R1Y[i], r2x = R2X[i], r2y = R2Y[i], angle = ANGLE[i];
         /* bad = 1 where the element leaves the common case (NaN included) */
         double bad = 0.0, a;
@@ -813,9 +822,8 @@ fast_geometry_body(ptrdiff_t n, const double *const in[HERTZ_NGEOMETRY], stage1 
         s->pabs[i] = pabs;
         s->rx[i] = rx;
         s->ry[i] = ry;
-        any = bad == 0.0 ? any : 1.0;
     }
-    return any;
+    return any_flag(n, s->other);
 }
 
 /* E* of moduli within [2^-900, 2^1000]; *bad = 1 for others. */
@@ -835,52 +843,58 @@ fast_modulus(double e1, double nu1, double e2, double nu2, double *ee, double *b
 
 /* E* per element into s (flagging elements in `other`), computed once for a
  * block whose moduli are all equal.  Returns 1 if any was flagged. */
-HERTZ_MULTIVERSION static double
-fast_moduli(ptrdiff_t n, const double *const in[HERTZ_NGEOMETRY], stage1 *restrict s)
+#define GEOMETRY_PARAMETERS ptrdiff_t n, const double *const in[HERTZ_NGEOMETRY], stage1 *restrict s
+#define GEOMETRY_NAMES n, in, s
+
+HERTZ_INLINE double
+fast_moduli_body(GEOMETRY_PARAMETERS, const int fused)
 {
+    (void)fused;
     const double *restrict E1 = in[HERTZ_E1], *restrict NU1 = in[HERTZ_NU1];
     const double *restrict E2 = in[HERTZ_E2], *restrict NU2 = in[HERTZ_NU2];
-    double varied = 0.0;
-    for (ptrdiff_t i = 0; i < n; ++i) {
-        varied = E1[i] == E1[0] ? varied : 1.0;
-        varied = NU1[i] == NU1[0] ? varied : 1.0;
-        varied = E2[i] == E2[0] ? varied : 1.0;
-        varied = NU2[i] == NU2[0] ? varied : 1.0;
+    double *restrict esm = s->esm, *restrict ese = s->ese, *restrict flag = s->other;
+    double varied[HERTZ_BLOCK];
+    for (ptrdiff_t i = 0; i < n; ++i) { /* vectorised */
+        double v = E1[i] == E1[0] ? 0.0 : 1.0;
+        v = NU1[i] == NU1[0] ? v : 1.0;
+        v = E2[i] == E2[0] ? v : 1.0;
+        varied[i] = NU2[i] == NU2[0] ? v : 1.0;
     }
-    double any = 0.0;
-    if (varied == 0.0) {
+    if (!any_flag(n, varied)) {
         double ee, bad, em = fast_modulus(E1[0], NU1[0], E2[0], NU2[0], &ee, &bad);
-        for (ptrdiff_t i = 0; i < n; ++i) {
-            s->esm[i] = em;
-            s->ese[i] = ee;
-            double other = s->other[i];
-            s->other[i] = other > bad ? other : bad; /* both 0 or 1 */
+        for (ptrdiff_t i = 0; i < n; ++i) { /* vectorised */
+            esm[i] = em;
+            ese[i] = ee;
+            flag[i] = flag[i] > bad ? flag[i] : bad; /* both 0 or 1 */
         }
         return bad;
     }
-    double *restrict esm = s->esm, *restrict ese = s->ese, *restrict flag = s->other;
+    double bad[HERTZ_BLOCK];
     for (ptrdiff_t i = 0; i < n; ++i) {
-        double ee, bad;
-        esm[i] = fast_modulus(E1[i], NU1[i], E2[i], NU2[i], &ee, &bad);
+        double ee;
+        esm[i] = fast_modulus(E1[i], NU1[i], E2[i], NU2[i], &ee, &bad[i]);
         ese[i] = ee;
-        flag[i] = flag[i] > bad ? flag[i] : bad;
-        any = bad == 0.0 ? any : 1.0;
+        flag[i] = flag[i] > bad[i] ? flag[i] : bad[i];
     }
-    return any;
+    return any_flag(n, bad);
 }
+HERTZ_VERSIONS(double, fast_moduli, GEOMETRY_PARAMETERS, GEOMETRY_NAMES)
 
-HERTZ_MULTIVERSION static double
-fast_geometry(ptrdiff_t n, const double *const in[HERTZ_NGEOMETRY], stage1 *restrict s)
+HERTZ_INLINE double
+fast_geometry_body(GEOMETRY_PARAMETERS, const int fused)
 {
-    return fast_geometry_body(n, in, s, 0);
+    (void)fused;
+    return fast_geometry_common(n, in, s, 0);
 }
+HERTZ_VERSIONS(double, fast_geometry, GEOMETRY_PARAMETERS, GEOMETRY_NAMES)
 
-HERTZ_MULTIVERSION static double
-fast_geometry_aligned(ptrdiff_t n, const double *const in[HERTZ_NGEOMETRY],
-                      stage1 *restrict s)
+HERTZ_INLINE double
+fast_geometry_aligned_body(GEOMETRY_PARAMETERS, const int fused)
 {
-    return fast_geometry_body(n, in, s, 1);
+    (void)fused;
+    return fast_geometry_common(n, in, s, 1);
 }
+HERTZ_VERSIONS(double, fast_geometry_aligned, GEOMETRY_PARAMETERS, GEOMETRY_NAMES)
 
 /* Stage 1 for a block, with the scalar code for the flagged elements (and
  * for the major-axis angle when asked).  HERTZ_OK, or an error code with
@@ -889,12 +903,13 @@ static int
 geometry_stage(ptrdiff_t n, const double *const in[HERTZ_NGEOMETRY], stage1 *s,
                double *theta, ptrdiff_t *bad, hertz_scaled *rho_x, hertz_scaled *rho_y)
 {
-    double turned = 0.0;
+    double flags[HERTZ_BLOCK];
     for (ptrdiff_t i = 0; i < n; ++i) {
-        turned = in[HERTZ_ANGLE][i] == 0.0 ? turned : 1.0;
+        flags[i] = in[HERTZ_ANGLE][i] == 0.0 ? 0.0 : 1.0;
     }
-    double any = turned != 0.0 ? fast_geometry(n, in, s) : fast_geometry_aligned(n, in, s);
-    any += fast_moduli(n, in, s);
+    double any = any_flag(n, flags) ? HERTZ_PICK(fast_geometry)(n, in, s)
+                             : HERTZ_PICK(fast_geometry_aligned)(n, in, s);
+    any += HERTZ_PICK(fast_moduli)(n, in, s);
     if (any == 0.0 && !theta) {
         return HERTZ_OK;
     }
@@ -943,16 +958,21 @@ geometry_stage(ptrdiff_t n, const double *const in[HERTZ_NGEOMETRY], stage1 *s,
 
 /* Coefficients per element (stage 3): c = {lam, cb.m, cb.e, cd.m, cd.e,
  * cp.m, cp.e, cs.m, cs.e}, each an array of n. */
-HERTZ_MULTIVERSION static void
-coefficients_loop(ptrdiff_t n, const double *restrict rs, const double *restrict rse,
-                  const double *restrict es_m, const double *restrict es_e,
-                  const double *restrict lam, const double *restrict K,
-                  const double *restrict E, double *restrict cl, double *restrict cbm,
-                  double *restrict cbe, double *restrict cdm, double *restrict cde,
-                  double *restrict cpm, double *restrict cpe, double *restrict csm,
-                  double *restrict cse)
+#define COEFFICIENTS_PARAMETERS                                                          \
+    ptrdiff_t n, const double *restrict rs, const double *restrict rse,                  \
+        const double *restrict es_m, const double *restrict es_e, const double *restrict lam, \
+        const double *restrict K, const double *restrict E, double *restrict cl,         \
+        double *restrict cbm, double *restrict cbe, double *restrict cdm,                \
+        double *restrict cde, double *restrict cpm, double *restrict cpe,                \
+        double *restrict csm, double *restrict cse
+#define COEFFICIENTS_NAMES n, rs, rse, es_m, es_e, lam, K, E, cl, cbm, cbe, cdm, cde, cpm, cpe, \
+                           csm, cse
+
+HERTZ_INLINE int
+coefficients_loop_body(COEFFICIENTS_PARAMETERS, const int fused)
 {
-    for (ptrdiff_t i = 0; i < n; ++i) {
+    (void)fused;
+    for (ptrdiff_t i = 0; i < n; ++i) { /* vectorised */
         double er, rho_m = split_normal(rs[i], &er);
         er += rse[i];
         double half_e = 0.5 / E[i], esm = es_m[i], ese = es_e[i];
@@ -966,13 +986,15 @@ coefficients_loop(ptrdiff_t n, const double *restrict rs, const double *restrict
         csm[i] = PI * lam[i] * esm / K[i];
         cse[i] = ese;
     }
+    return 0;
 }
+HERTZ_VERSIONS(int, coefficients_loop, COEFFICIENTS_PARAMETERS, COEFFICIENTS_NAMES)
 
 static void
 coefficients_stage(ptrdiff_t n, const stage1 *s, const double *lam, const double *K,
                    const double *E, double *const c[HERTZ_NCOEFFICIENTS])
 {
-    coefficients_loop(n, s->rs, s->rse, s->esm, s->ese, lam, K, E, c[0], c[1], c[2], c[3], c[4],
+    HERTZ_PICK(coefficients_loop)(n, s->rs, s->rse, s->esm, s->ese, lam, K, E, c[0], c[1], c[2], c[3], c[4],
                       c[5], c[6], c[7], c[8]);
 }
 
@@ -997,7 +1019,7 @@ coefficients_stage(ptrdiff_t n, const stage1 *s, const double *lam, const double
 #define GIVEN_NAMES n, cl, cbm, cbe, cdm, cde, cpm, cpe, csm, cse, vm, ve, v, oa, ob, oload, \
                     op0, odelta, ostiff
 
-/* x 2^e; in the fast variant, wide becomes 1 where |e| > 1000. */
+/* x 2^e; in the fast variant, *wide becomes 1 where |e| > 1000. */
 HERTZ_INLINE double
 place(double x, double e, double *wide, const int fast)
 {
@@ -1024,8 +1046,9 @@ value_of(const double *restrict vm, const double *restrict ve, const double *res
 HERTZ_INLINE double
 given_load_body(GIVEN_PARAMETERS, const int fused, const int fast)
 {
-    double wide = 0.0;
-    for (ptrdiff_t i = 0; i < n; ++i) {
+    double wide[HERTZ_BLOCK];
+    for (ptrdiff_t i = 0; i < n; ++i) { /* vectorised */
+        double w = 0.0;
         /* b^3 = cb P = (xh + xl) 2^(3q) */
         double vme, vmi = value_of(vm, ve, v, i, &vme, fast);
         double xl, xh = two_prod(cbm[i], vmi, &xl, fused);
@@ -1046,21 +1069,23 @@ given_load_body(GIVEN_PARAMETERS, const int fused, const int fast)
         cl3 += sl * bh;
         double bl = (((xh - ch) - cl3) + xl) * (r2 * (1.0 / 3.0));
         double b2l, b2h = dd_mul(bh, bl, bh, bl, &b2l, fused);
-        oa[i] = place(dd_scale(cl[i], bh, bl, fused), q, &wide, fast);
-        ob[i] = place(bh + bl, q, &wide, fast);
+        oa[i] = place(dd_scale(cl[i], bh, bl, fused), q, &w, fast);
+        ob[i] = place(bh + bl, q, &w, fast);
         oload[i] = v[i];
-        op0[i] = place(dd_scale(cpm[i], bh, bl, fused), cpe[i] + q, &wide, fast);
-        odelta[i] = place(dd_scale(cdm[i], b2h, b2l, fused), cde[i] + 2.0 * q, &wide, fast);
-        ostiff[i] = place(dd_scale(csm[i], bh, bl, fused), cse[i] + q, &wide, fast);
+        op0[i] = place(dd_scale(cpm[i], bh, bl, fused), cpe[i] + q, &w, fast);
+        odelta[i] = place(dd_scale(cdm[i], b2h, b2l, fused), cde[i] + 2.0 * q, &w, fast);
+        ostiff[i] = place(dd_scale(csm[i], bh, bl, fused), cse[i] + q, &w, fast);
+        wide[i] = w;
     }
-    return wide;
+    return fast && any_flag(n, wide) ? 1.0 : 0.0;
 }
 
 HERTZ_INLINE double
 given_approach_body(GIVEN_PARAMETERS, const int fused, const int fast)
 {
-    double wide = 0.0;
-    for (ptrdiff_t i = 0; i < n; ++i) {
+    double wide[HERTZ_BLOCK];
+    for (ptrdiff_t i = 0; i < n; ++i) { /* vectorised */
+        double w = 0.0;
         /* b^2 = t = delta / cd = (th + tl) 2^(2q); P = t b / cb */
         double vme, vmi = value_of(vm, ve, v, i, &vme, fast);
         double th = vmi / cdm[i], pe, pp = two_prod(th, cdm[i], &pe, fused);
@@ -1076,21 +1101,23 @@ given_approach_body(GIVEN_PARAMETERS, const int fused, const int fast)
         double sl, sh = two_prod(bh, bh, &sl, fused);
         double bl = ((th - sh) - sl + tl) / (2.0 * bh);
         double ll, lh = dd_mul(th, tl, bh, bl, &ll, fused);
-        oa[i] = place(dd_scale(cl[i], bh, bl, fused), q, &wide, fast);
-        ob[i] = place(bh + bl, q, &wide, fast);
-        oload[i] = place(dd_div(lh, ll, cbm[i], fused), 3.0 * q - cbe[i], &wide, fast);
-        op0[i] = place(dd_scale(cpm[i], bh, bl, fused), cpe[i] + q, &wide, fast);
+        oa[i] = place(dd_scale(cl[i], bh, bl, fused), q, &w, fast);
+        ob[i] = place(bh + bl, q, &w, fast);
+        oload[i] = place(dd_div(lh, ll, cbm[i], fused), 3.0 * q - cbe[i], &w, fast);
+        op0[i] = place(dd_scale(cpm[i], bh, bl, fused), cpe[i] + q, &w, fast);
         odelta[i] = v[i];
-        ostiff[i] = place(dd_scale(csm[i], bh, bl, fused), cse[i] + q, &wide, fast);
+        ostiff[i] = place(dd_scale(csm[i], bh, bl, fused), cse[i] + q, &w, fast);
+        wide[i] = w;
     }
-    return wide;
+    return fast && any_flag(n, wide) ? 1.0 : 0.0;
 }
 
 HERTZ_INLINE double
 given_p0_body(GIVEN_PARAMETERS, const int fused, const int fast)
 {
-    double wide = 0.0;
-    for (ptrdiff_t i = 0; i < n; ++i) {
+    double wide[HERTZ_BLOCK];
+    for (ptrdiff_t i = 0; i < n; ++i) { /* vectorised */
+        double w = 0.0;
         /* b = p0 / cp; P = b^3 / cb */
         double vme, vmi = value_of(vm, ve, v, i, &vme, fast);
         double bh = vmi / cpm[i], pe, pp = two_prod(bh, cpm[i], &pe, fused);
@@ -1098,25 +1125,25 @@ given_p0_body(GIVEN_PARAMETERS, const int fused, const int fast)
         double q = vme - cpe[i];
         double b2l, b2h = dd_mul(bh, bl, bh, bl, &b2l, fused);
         double ll, lh = dd_mul(b2h, b2l, bh, bl, &ll, fused);
-        oa[i] = place(dd_scale(cl[i], bh, bl, fused), q, &wide, fast);
-        ob[i] = place(bh + bl, q, &wide, fast);
-        oload[i] = place(dd_div(lh, ll, cbm[i], fused), 3.0 * q - cbe[i], &wide, fast);
+        oa[i] = place(dd_scale(cl[i], bh, bl, fused), q, &w, fast);
+        ob[i] = place(bh + bl, q, &w, fast);
+        oload[i] = place(dd_div(lh, ll, cbm[i], fused), 3.0 * q - cbe[i], &w, fast);
         op0[i] = v[i];
-        odelta[i] = place(dd_scale(cdm[i], b2h, b2l, fused), cde[i] + 2.0 * q, &wide, fast);
-        ostiff[i] = place(dd_scale(csm[i], bh, bl, fused), cse[i] + q, &wide, fast);
+        odelta[i] = place(dd_scale(cdm[i], b2h, b2l, fused), cde[i] + 2.0 * q, &w, fast);
+        ostiff[i] = place(dd_scale(csm[i], bh, bl, fused), cse[i] + q, &w, fast);
+        wide[i] = w;
     }
-    return wide;
+    return fast && any_flag(n, wide) ? 1.0 : 0.0;
 }
 
+/* MODE_fast in every version of the build (fused in the SIMD versions, which
+ * have FMA), MODE_exact plain. */
 #define GIVEN_VARIANTS(MODE)                                                            \
-    HERTZ_MULTIVERSION static double MODE##_fast(GIVEN_PARAMETERS)                      \
+    HERTZ_INLINE double MODE##_fast_body(GIVEN_PARAMETERS, const int fused)             \
     {                                                                                   \
-        return MODE##_body(GIVEN_NAMES, 0, 1);                                          \
+        return MODE##_body(GIVEN_NAMES, fused, 1);                                      \
     }                                                                                   \
-    HERTZ_FMA_MULTIVERSION static double MODE##_fast_fused(GIVEN_PARAMETERS)            \
-    {                                                                                   \
-        return MODE##_body(GIVEN_NAMES, 1, 1);                                          \
-    }                                                                                   \
+    HERTZ_VERSIONS(double, MODE##_fast, GIVEN_PARAMETERS, GIVEN_NAMES)                  \
     static double MODE##_exact(GIVEN_PARAMETERS)                                        \
     {                                                                                   \
         return MODE##_body(GIVEN_NAMES, 0, 0);                                          \
@@ -1132,12 +1159,13 @@ hertz_given_block(ptrdiff_t n, int mode, const double *const c[HERTZ_NCOEFFICIEN
                   const double *value, double *const out[HERTZ_NGIVEN], ptrdiff_t *bad)
 {
     double vm[HERTZ_BLOCK], ve[HERTZ_BLOCK];
-    double odd = 0.0; /* 1 if a value is zero, subnormal, infinite or NaN */
+    double flags[HERTZ_BLOCK]; /* 1 for a value zero, subnormal, infinite or NaN */
     for (ptrdiff_t i = 0; i < n; ++i) {
         double v = value[i];
-        odd = v >= DBL_MIN ? (v <= DBL_MAX ? odd : 1.0) : 1.0;
+        flags[i] = v >= DBL_MIN ? (v <= DBL_MAX ? 0.0 : 1.0) : 1.0;
     }
-    if (odd != 0.0) {
+    int odd = any_flag(n, flags);
+    if (odd != 0) {
         for (ptrdiff_t i = 0; i < n; ++i) {
             if (!(value[i] >= 0.0 && value[i] <= DBL_MAX)) {
                 *bad = i;
@@ -1149,17 +1177,17 @@ hertz_given_block(ptrdiff_t n, int mode, const double *const c[HERTZ_NCOEFFICIEN
                         out[0], out[1], out[2], out[3], out[4], out[5]
     /* The fast variant splits the values itself; the exact one, for a block
      * with an odd value or an output beyond 2^+-1000, reads them split here. */
-    int fused = hertz_fma_available(), exact = odd != 0.0;
+    int exact = odd != 0;
     if (!exact) {
         double wide;
         if (mode == HERTZ_GIVEN_LOAD) {
-            wide = (fused ? given_load_fast_fused : given_load_fast)(GIVEN_ARGUMENTS);
+            wide = HERTZ_PICK(given_load_fast)(GIVEN_ARGUMENTS);
         }
         else if (mode == HERTZ_GIVEN_APPROACH) {
-            wide = (fused ? given_approach_fast_fused : given_approach_fast)(GIVEN_ARGUMENTS);
+            wide = HERTZ_PICK(given_approach_fast)(GIVEN_ARGUMENTS);
         }
         else {
-            wide = (fused ? given_p0_fast_fused : given_p0_fast)(GIVEN_ARGUMENTS);
+            wide = HERTZ_PICK(given_p0_fast)(GIVEN_ARGUMENTS);
         }
         exact = wide != 0.0;
     }
@@ -1180,7 +1208,7 @@ hertz_given_block(ptrdiff_t n, int mode, const double *const c[HERTZ_NCOEFFICIEN
         }
     }
 #undef GIVEN_ARGUMENTS
-    if (odd != 0.0) {
+    if (odd != 0) {
         for (ptrdiff_t i = 0; i < n; ++i) {
             if (value[i] == 0.0) {
                 for (int k = 0; k < HERTZ_NGIVEN; ++k) {

@@ -38,7 +38,7 @@
 #endif
 
 /* Horner in z on a stored row, then the two-part leading coefficient. */
-static inline double
+HERTZ_INLINE double
 table_poly(const double *c, double z)
 {
     double r = c[9];
@@ -53,7 +53,7 @@ table_poly(const double *c, double z)
 }
 
 /* lambda, K, E of one alpha in [1, 2^TABLE_BINADES). */
-static inline void
+HERTZ_INLINE void
 table_one(double a, double *lam, double *K, double *E)
 {
     uint64_t bits;
@@ -72,7 +72,7 @@ table_one(double a, double *lam, double *K, double *E)
     *E = a == 1.0 ? PI_2 : table_poly(row + 2 * TABLE_STRIDE, z);
 }
 
-#if defined(__GNUC__) && defined(__x86_64__) && defined(__linux__) && !defined(HERTZ_PLAIN)
+#if HERTZ_X86_PATHS
 #include <immintrin.h>
 #define HAVE_AVX2_TABLE 1
 
@@ -217,16 +217,9 @@ table_avx512(ptrdiff_t n, const double *alpha, double *lam, double *K, double *E
     return table_avx2(n - i, alpha + i, lam + i, K + i, E + i) | outside;
 }
 
-static int
-avx512_available(void)
-{
-    static int avx512 = -1;
-    if (avx512 < 0) {
-        __builtin_cpu_init();
-        avx512 = __builtin_cpu_supports("avx512f");
-    }
-    return avx512;
-}
+#ifndef TABLE_AVX512
+#define TABLE_AVX512 table_avx512
+#endif
 #else
 #define HAVE_AVX2_TABLE 0
 #endif
@@ -236,10 +229,11 @@ hertz_ellipse_table(const double *alpha, ptrdiff_t n, double *lam, double *K, do
 {
     int outside = 0;
 #if HAVE_AVX2_TABLE
-    if (hertz_simd(-1) && avx512_available()) {
-        outside = table_avx512(n, alpha, lam, K, E);
+    int path = hertz_path();
+    if (path == HERTZ_PATH_AVX512) {
+        outside = TABLE_AVX512(n, alpha, lam, K, E);
     }
-    else if (hertz_simd(-1)) {
+    else if (path == HERTZ_PATH_AVX2) {
         outside = table_avx2(n, alpha, lam, K, E);
     }
     else

@@ -48,25 +48,80 @@
 #include "_coefficients.h"
 #include "_kernel.h"
 
-/* With GCC or Clang on x86-64 Linux, the block functions are also compiled for
- * AVX2 and the better one is chosen at load time; the vectorised stages then
- * take four elements at a time.  Elementwise operations round the same way at
- * any vector width (and -ffp-contract=off forbids fused multiply-adds), so
- * both versions give the same bits. */
-#if defined(__GNUC__) && defined(__x86_64__) && defined(__linux__) && !defined(HERTZ_PLAIN)
-#define MULTIVERSION __attribute__((target_clones("avx2", "default")))
+/* The block functions (associate_integrals, solve_block) are compiled once per
+ * code path of this build (HERTZ_VERSIONS in _kernel.h: AVX-512, AVX2 and
+ * plain on x86-64 Linux, plain elsewhere) and the path is chosen at run time
+ * (hertz_path); the vectorised stages then take four or eight elements at a
+ * time.  Elementwise operations round the same way at any vector width (and
+ * -ffp-contract=off forbids fused multiply-adds), so all give the same bits. */
+
+/* The processor's best path (-1: not asked yet) and the limit set by
+ * hertz_set_path; both plain ints, written with the same value by any thread
+ * that races on the first call. */
+static int best_path = -1;
+static int path_limit = HERTZ_PATH_AVX512;
+
+static int
+detect_path(void)
+{
+#if HERTZ_X86_PATHS
+    __builtin_cpu_init();
+    if (!__builtin_cpu_supports("avx2") || !__builtin_cpu_supports("fma")) {
+        return HERTZ_PATH_PLAIN;
+    }
+    if (__builtin_cpu_supports("avx512f") && __builtin_cpu_supports("avx512dq")
+        && __builtin_cpu_supports("avx512vl") && __builtin_cpu_supports("avx512bw")) {
+        return HERTZ_PATH_AVX512;
+    }
+    return HERTZ_PATH_AVX2;
 #else
-#define MULTIVERSION
+    return HERTZ_PATH_PLAIN;
 #endif
+}
+
+int
+hertz_path(void)
+{
+    if (best_path < 0) {
+        best_path = detect_path();
+    }
+    return best_path < path_limit ? best_path : path_limit;
+}
+
+int
+hertz_set_path(int limit)
+{
+    path_limit = limit < HERTZ_PATH_PLAIN ? HERTZ_PATH_PLAIN
+                                          : (limit > HERTZ_PATH_AVX512 ? HERTZ_PATH_AVX512 : limit);
+    return hertz_path();
+}
+
+int
+hertz_paths_built(void)
+{
+    return HERTZ_X86_PATHS ? (1 << HERTZ_PATH_PLAIN) | (1 << HERTZ_PATH_AVX2)
+                                 | (1 << HERTZ_PATH_AVX512)
+                           : 1 << HERTZ_PATH_PLAIN;
+}
+
+int
+hertz_simd(int enable)
+{
+    if (enable >= 0) {
+        hertz_set_path(enable ? HERTZ_PATH_AVX512 : HERTZ_PATH_PLAIN);
+    }
+    return hertz_path() != HERTZ_PATH_PLAIN;
+}
 
 #if START_DEGREE != 5
 #error "the start is evaluated as a degree-5 polynomial"
 #endif
 
-static inline double
+HERTZ_INLINE double
 horner(const double *c, int degree, double x)
 {
     double r = c[degree];
+    HERTZ_UNROLL(8)
     for (int i = degree - 1; i >= 0; --i) {
         r = r * x + c[i];
     }
@@ -81,10 +136,15 @@ horner(const double *c, int degree, double x)
 #error "BLOCK and HERTZ_BLOCK must agree"
 #endif
 
-MULTIVERSION static void
-associate_integrals(ptrdiff_t n, const double *m, const double *p,
-                    double *B, double *D, double *V)
+#define ASSOC_PARAMETERS                                                          \
+    ptrdiff_t n, const double *restrict m, const double *restrict p, double *restrict B, \
+        double *restrict D, double *restrict V
+#define ASSOC_NAMES n, m, p, B, D, V
+
+HERTZ_INLINE int
+associate_integrals_body(ASSOC_PARAMETERS, const int fused)
 {
+    (void)fused;
     double l1[BLOCK];
     /* DLMF 19.12.1-2 rearranged, L = ln(4/sqrt(p)):
      *   mD = Q_D (L - 1) + P_D,  mB = Q_B L + P_B  (valid for p < P_LOG_MAX).
@@ -103,7 +163,7 @@ associate_integrals(ptrdiff_t n, const double *m, const double *p,
         B[i] = mb * im;
         V[i] = (mb - x * md) * im * im;
     }
-    for (ptrdiff_t i = 0; i < n; ++i) {
+    for (ptrdiff_t i = 0; i < n; ++i) { /* vectorised */
         if (m[i] > M_LANDEN_MAX) {
             continue;
         }
@@ -127,7 +187,9 @@ associate_integrals(ptrdiff_t n, const double *m, const double *p,
         B[i] = (b1 + (1.0 - k1) * d1) * is1;
         V[i] = D[i] - 2.0 * d1 * is1 * is1 * is1;
     }
+    return 0;
 }
+HERTZ_VERSIONS(int, associate_integrals, ASSOC_PARAMETERS, ASSOC_NAMES)
 
 /* alpha = 1, alpha = inf, and alpha' = max(alpha, 1/alpha) >= 2^START_BINADES,
  * where lambda^2 = alpha' (L - 1), L = ln 4 + ln lambda (relative error
@@ -163,10 +225,15 @@ solve_closed_form(double alpha, int flip, double *lam, double *m, double *K, dou
  * processed one stage at a time, so that the processor overlaps independent
  * elements (and the compiler vectorises the branch-free stages) instead of
  * waiting on the dependency chain of one. */
-MULTIVERSION static ptrdiff_t
-solve_block(const double *alpha, ptrdiff_t n, int iterations,
-            double *lam, double *mo, double *ko, double *eo)
+#define SOLVE_PARAMETERS                                                         \
+    const double *alpha, ptrdiff_t n, int iterations, double *lam, double *mo, double *ko, \
+        double *eo
+#define SOLVE_NAMES alpha, n, iterations, lam, mo, ko, eo
+
+HERTZ_INLINE ptrdiff_t
+solve_block_body(SOLVE_PARAMETERS, const int fused)
 {
+    (void)fused;
     double m[BLOCK], p[BLOCK], B[BLOCK], D[BLOCK], V[BLOCK], dm[BLOCK], inv_m[BLOCK];
     unsigned char done[BLOCK];
 
@@ -223,9 +290,9 @@ solve_block(const double *alpha, ptrdiff_t n, int iterations,
 
     for (int it = 0; it < iterations; ++it) {
         /* Stage 2: B, D, V at the current point. */
-        associate_integrals(n, m, p, B, D, V);
+        associate_integrals_body(n, m, p, B, D, V, fused);
         /* Stage 3: one Bailey step, eq. (2), on f(x) = ln(B/(p D alpha')). */
-        for (ptrdiff_t i = 0; i < n; ++i) {
+        for (ptrdiff_t i = 0; i < n; ++i) { /* vectorised */
             double a = alpha[i], mi = m[i], pi = p[i], b = B[i], d = D[i], v = V[i];
             int flip = a < 1.0;
             /* w = B/(p D alpha') - 1, for small m from R - 1 = m V/(p D).
@@ -257,11 +324,11 @@ solve_block(const double *alpha, ptrdiff_t n, int iterations,
     }
 
     if (iterations == 0 && (ko || eo)) {
-        associate_integrals(n, m, p, B, D, V);
+        associate_integrals_body(n, m, p, B, D, V, fused);
     }
 
     /* Stage 4: outputs (elements solved in stage 1 keep their values). */
-    for (ptrdiff_t i = 0; i < n; ++i) {
+    for (ptrdiff_t i = 0; i < n; ++i) { /* vectorised */
         double mi = m[i], pi = p[i];
         double kp = sqrt(pi);
         double near_one = 1.0 + mi / (kp * (1.0 + kp)); /* keeps lambda - 1 accurate */
@@ -283,13 +350,13 @@ solve_block(const double *alpha, ptrdiff_t n, int iterations,
      * = 0) they are those of the start. */
     double K[BLOCK], E[BLOCK];
     if (iterations == 0) {
-        for (ptrdiff_t i = 0; i < n; ++i) {
+        for (ptrdiff_t i = 0; i < n; ++i) { /* vectorised */
             K[i] = B[i] + D[i];
             E[i] = B[i] + p[i] * D[i];
         }
     }
     else {
-        for (ptrdiff_t i = 0; i < n; ++i) {
+        for (ptrdiff_t i = 0; i < n; ++i) { /* vectorised */
             double a = alpha[i], pi = p[i], h = dm[i], d = D[i], v = V[i];
             double p0 = pi + h, ip0 = 1.0 / p0;
             double d1 = 0.5 * v * ip0;
@@ -308,8 +375,15 @@ solve_block(const double *alpha, ptrdiff_t n, int iterations,
     }
     return -1;
 }
+HERTZ_VERSIONS(ptrdiff_t, solve_block, SOLVE_PARAMETERS, SOLVE_NAMES)
 
-#if defined(__GNUC__) && defined(__x86_64__) && defined(__linux__) && !defined(HERTZ_PLAIN)
+static ptrdiff_t
+solve_block(SOLVE_PARAMETERS)
+{
+    return HERTZ_PICK(solve_block)(SOLVE_NAMES);
+}
+
+#if HERTZ_X86_PATHS
 #include <immintrin.h>
 #define HAVE_AVX2_START 1
 
@@ -377,26 +451,8 @@ start_only_avx2(const double *alpha, ptrdiff_t n, double *lam)
     return -1;
 }
 
-/* -1: not decided yet, 0: scalar code, 1: AVX2 start-only path. */
-static int use_avx2 = -1;
-
-static int
-avx2_enabled(void)
-{
-    if (use_avx2 < 0) {
-        __builtin_cpu_init();
-        use_avx2 = __builtin_cpu_supports("avx2") ? 1 : 0;
-    }
-    return use_avx2;
-}
 #else
 #define HAVE_AVX2_START 0
-static int use_avx2 = 0;
-static int
-avx2_enabled(void)
-{
-    return 0;
-}
 #endif
 
 /* ------------------------------------------------------------- entry points */
@@ -413,7 +469,7 @@ hertz_ellipse_solve(const double *alpha, ptrdiff_t n, int iterations,
                     double *lam, double *m, double *K, double *E)
 {
 #if HAVE_AVX2_START
-    if (iterations == 0 && !m && !K && !E && avx2_enabled()) {
+    if (iterations == 0 && !m && !K && !E && hertz_path() != HERTZ_PATH_PLAIN) {
         return start_only_avx2(alpha, n, lam);
     }
 #endif
@@ -434,34 +490,6 @@ hertz_associate_integrals(ptrdiff_t n, const double *m, const double *p,
 {
     for (ptrdiff_t i = 0; i < n; i += BLOCK) {
         ptrdiff_t len = n - i < BLOCK ? n - i : BLOCK;
-        associate_integrals(len, m + i, p + i, B + i, D + i, V + i);
+        HERTZ_PICK(associate_integrals)(len, m + i, p + i, B + i, D + i, V + i);
     }
-}
-
-int
-hertz_fma_available(void)
-{
-#if HERTZ_FMA_CLONES
-    static int fma = -1;
-    if (fma < 0) {
-        __builtin_cpu_init();
-        /* the x86-64-v3 clones: FMA and AVX2 together */
-        fma = __builtin_cpu_supports("fma") && __builtin_cpu_supports("avx2");
-    }
-    return fma;
-#elif (defined(__aarch64__) || defined(_M_ARM64)) && !defined(HERTZ_PLAIN)
-    return 1;
-#else
-    return 0;
-#endif
-}
-
-int
-hertz_simd(int enable)
-{
-    if (enable >= 0) {
-        use_avx2 = -1;
-        use_avx2 = enable ? avx2_enabled() : 0;
-    }
-    return avx2_enabled();
 }

@@ -828,9 +828,9 @@ line_scalar(PyObject *self, PyObject *const *args, Py_ssize_t nargs)
 
 PyDoc_STRVAR(simd_doc,
 "simd(enable=None) -> bool\n\n"
-"Whether the AVX2 start-only path is used (it gives the same bits as the\n"
-"plain code); with enable, switch it on or off first (on only if the CPU\n"
-"has AVX2).  Private: for tests and benchmarks.");
+"Whether a SIMD code path (AVX2 or AVX-512) is used (they give the same bits\n"
+"as the plain code); with enable, switch to the plain path or back to the\n"
+"best the CPU has first.  Private: for tests and benchmarks.");
 
 static PyObject *
 simd(PyObject *self, PyObject *args)
@@ -893,11 +893,124 @@ associate_integrals(PyObject *self, PyObject *args)
     return result;
 }
 
+/* ------------------------------------------------------------ build info */
+
+#if defined(HERTZ_BUILD_INFO)
+#include "hertz_build_info.h" /* written by setup.py into the build's temporary folder */
+#endif
+#ifndef HERTZ_BUILD_COMMAND
+#define HERTZ_BUILD_COMMAND ""
+#endif
+#ifndef HERTZ_BUILD_FLAGS
+#define HERTZ_BUILD_FLAGS ""
+#endif
+
+#define HERTZ_STRINGIFY_(x) #x
+#define HERTZ_STRINGIFY(x) HERTZ_STRINGIFY_(x)
+#if defined(__clang__)
+#define HERTZ_COMPILER                                                              \
+    "Clang " HERTZ_STRINGIFY(__clang_major__) "." HERTZ_STRINGIFY(__clang_minor__) "." \
+        HERTZ_STRINGIFY(__clang_patchlevel__)
+#elif defined(__GNUC__)
+#define HERTZ_COMPILER "GCC " __VERSION__
+#elif defined(_MSC_VER)
+#define HERTZ_COMPILER "MSVC " HERTZ_STRINGIFY(_MSC_FULL_VER)
+#else
+#define HERTZ_COMPILER "unknown"
+#endif
+
+static const char *const path_names[] = {"plain", "avx2", "avx512"};
+
+PyDoc_STRVAR(build_info_doc,
+"build_info() -> dict\n\n"
+"How this module was built and which code path runs: compiler (name and\n"
+"version), command (the compile command with its flags, CFLAGS included),\n"
+"flags (those setup.py added), paths (the code paths compiled in), path\n"
+"(the one in use on this processor), fma (whether exact products use fused\n"
+"multiply-adds on it: the same bits either way), plain (built with\n"
+"HERTZ_PLAIN), fast_math (__FAST_MATH__: must be False), optimized\n"
+"(__OPTIMIZE__).  Private: hertz.show_config() prints it.");
+
+static PyObject *
+build_info(PyObject *self, PyObject *args)
+{
+    (void)self;
+    (void)args;
+    int built = hertz_paths_built(), path = hertz_path();
+    PyObject *paths = PyTuple_New(0);
+    for (int k = HERTZ_PATH_AVX512; paths && k >= HERTZ_PATH_PLAIN; --k) {
+        if (built & (1 << k)) {
+            PyObject *name = PyUnicode_FromString(path_names[k]);
+            if (!name || _PyTuple_Resize(&paths, PyTuple_GET_SIZE(paths) + 1) < 0) {
+                Py_XDECREF(name);
+                Py_XDECREF(paths);
+                return NULL;
+            }
+            PyTuple_SET_ITEM(paths, PyTuple_GET_SIZE(paths) - 1, name);
+        }
+    }
+    if (!paths) {
+        return NULL;
+    }
+#if defined(HERTZ_PLAIN)
+    int plain = 1;
+#else
+    int plain = 0;
+#endif
+#if defined(__FAST_MATH__)
+    int fast_math = 1;
+#else
+    int fast_math = 0;
+#endif
+#if defined(__OPTIMIZE__)
+    int optimized = 1;
+#else
+    int optimized = 0;
+#endif
+    return Py_BuildValue("{s:s,s:s,s:s,s:N,s:s,s:N,s:N,s:N,s:N}", "compiler", HERTZ_COMPILER,
+                         "command", HERTZ_BUILD_COMMAND, "flags", HERTZ_BUILD_FLAGS, "paths",
+                         paths, "path", path_names[path], "fma",
+                         PyBool_FromLong(path != HERTZ_PATH_PLAIN || HERTZ_PLAIN_FMA), "plain",
+                         PyBool_FromLong(plain), "fast_math", PyBool_FromLong(fast_math),
+                         "optimized", PyBool_FromLong(optimized));
+}
+
+PyDoc_STRVAR(path_doc,
+"path(limit=None) -> str\n\n"
+"The code path in use ('plain', 'avx2' or 'avx512'); with limit, use at most\n"
+"that one from now on first ('avx512' for the best the processor has).  All\n"
+"paths give the same bits.  Private: for tests and benchmarks.");
+
+static PyObject *
+path(PyObject *self, PyObject *args)
+{
+    (void)self;
+    const char *limit = NULL;
+    if (!PyArg_ParseTuple(args, "|z", &limit)) {
+        return NULL;
+    }
+    if (limit) {
+        int k = HERTZ_PATH_PLAIN;
+        while (k <= HERTZ_PATH_AVX512 && strcmp(limit, path_names[k]) != 0) {
+            ++k;
+        }
+        if (k > HERTZ_PATH_AVX512) {
+            PyErr_Format(PyExc_ValueError, "no code path %R: 'plain', 'avx2' or 'avx512'",
+                         PyTuple_GET_ITEM(args, 0));
+            return NULL;
+        }
+        hertz_set_path(k);
+    }
+    return PyUnicode_FromString(path_names[hertz_path()]);
+}
+
 static PyMethodDef methods[] = {
     {"contact", (PyCFunction)(void (*)(void))contact_scalar, METH_FASTCALL, contact_scalar_doc},
     {"line_contact", (PyCFunction)(void (*)(void))line_scalar, METH_FASTCALL, line_scalar_doc},
     {"register_contact_type", register_contact_type, METH_O, register_doc},
     {"simd", simd, METH_VARARGS, simd_doc},
+    {"path", path, METH_VARARGS, path_doc},
+    {"build_info", build_info, METH_NOARGS, build_info_doc},
     {"associate_integrals", associate_integrals, METH_VARARGS, assoc_doc},
     {NULL, NULL, 0, NULL},
 };
