@@ -1035,33 +1035,27 @@ def _check_size(a, body1: Body, body2: Body, axis: str = "a") -> None:
             _warn_size(a, body1, body2, axis, (), 0, 1)
         return
     radii = (body1.Rx, body1.Ry, body2.Rx, body2.Ry)
-    # most batches are far within the limit: a bound of the smallest |R| over the batch
-    # (exact for one geometry) and the largest a settle them without temporary arrays
-    bound = math.inf
-    for r in radii:
-        if type(r) is float:
-            bound = min(bound, abs(r))
-        elif r.size:
-            low, high = float(np.min(r)), float(np.max(r))
-            bound = min(bound, low if low > 0 else -high if high < 0 else 0.0)
-    cut = _cutoff(bound)
-    if not np.size(a) or np.max(a) <= cut:  # (a NaN, never expected, goes on)
-        return
-    if all(type(r) is float for r in radii):
-        smallest = bound
+    if all(type(r) is float for r in radii):  # one geometry: one cutoff settles every a
+        cut = _cutoff(min(abs(r) for r in radii))
+        if not np.size(a) or np.max(a) <= cut:  # (a NaN, never expected, goes on)
+            return
         large = a > cut
     else:
         large = _beyond_limit(a, radii)
-        if not large.any():
-            return
-        smallest = np.minimum(np.minimum(np.abs(radii[0]), np.abs(radii[1])),
-                              np.minimum(np.abs(radii[2]), np.abs(radii[3])))
-    count = int(np.count_nonzero(large))
-    if count:
+    where = np.flatnonzero(large)
+    if where.size:
+        # the largest a/R among the contacts beyond the limit, computed for those only
         shape = np.shape(large)
+
+        def picked(x):
+            return np.broadcast_to(x, shape).reshape(-1)[where]
+
+        smallest = np.minimum(np.minimum(np.abs(picked(radii[0])), np.abs(picked(radii[1]))),
+                              np.minimum(np.abs(picked(radii[2])), np.abs(picked(radii[3]))))
         with np.errstate(over="ignore", invalid="ignore", divide="ignore"):
-            ratio = np.where(large, a / smallest, -np.inf)
-        _warn_size(a, body1, body2, axis, shape, int(np.argmax(ratio.reshape(-1))), count)
+            ratio = picked(a) / smallest
+        i = int(where[np.argmax(np.where(np.isnan(ratio), -np.inf, ratio))])
+        _warn_size(a, body1, body2, axis, shape, i, int(where.size))
 
 
 #: Elements per block of _beyond_limit: its buffers stay in the cache.
