@@ -499,3 +499,130 @@ def test_deck_of_zeros_is_not_read_whole(tmp_path, name):
             read_calculix_tangential(frd, symmetry="whole")
     _one_line_naming(exc, frd.with_suffix(".inp"))
     assert peak_mb() - before < 50
+
+
+# --- the audit of issue 22's fixes: decks, problem.json --------------------------------------
+
+def _deck_with(frd: Path, old: str, new: str) -> Path:
+    inp = frd.with_suffix(".inp")
+    text = inp.read_text()
+    assert old in text
+    inp.write_text(text.replace(old, new, 1))
+    return inp
+
+
+def test_frd_without_an_element_block(tmp_path):
+    """A .frd whose 3C block is gone (its deck beside it): was IndexError (exit 3)."""
+    frd = _run(tmp_path)
+    lines = frd.read_text().splitlines(keepends=True)
+    start = next(i for i, line in enumerate(lines) if line.startswith("    3C"))
+    end = next(i for i in range(start + 1, len(lines)) if lines[i].startswith(" -3"))
+    frd.write_text("".join(lines[:start] + lines[end + 1:]))
+    with pytest.raises(ValueError, match=r"holds no elements \(no 3C block\)") as exc:
+        read_calculix(frd, units="mm")
+    _one_line_naming(exc, frd)
+    scene = tmp_path / "scene.toml"
+    scene.write_text(CUBES_SCENE)
+    run = _grade_command(frd, scene, tmp_path / "graded")
+    assert run.returncode == 2 and run.stderr.count("\n") == 1, run.stderr
+    assert str(frd) in run.stderr and "no 3C block" in run.stderr
+
+
+@pytest.mark.parametrize("surface, words", [
+    ("*SURFACE, NAME=SLAVE, TYPE=ELEMENT\n", r"slave surface SLAVE .*has no faces or nodes"),
+    ("*SURFACE, NAME=SLAVE, TYPE=NODE\nx\ny\n", r"line 77: surface SLAVE: expected a node "
+                                                r"number, got 'x'"),
+    ("*SURFACE, NAME=SLAVE, TYPE=NODE\n99999999999999999999999\n",
+     r"line 77: surface SLAVE: node number 99999999999999999999999 is out of range"),
+    ("*SURFACE, NAME=SLAVE, TYPE=ELEMENT\n99999999999999999999, S1\n",
+     r"line 77: surface SLAVE: element number 99999999999999999999 is out of range"),
+    ("*SURFACE, NAME=SLAVE, TYPE=ELEMENT\n1, S1\n0, S1\n",
+     r"line 78: surface SLAVE: element number 0 is out of range"),
+])
+def test_slave_surface_malformed(tmp_path, surface, words):
+    """An empty slave surface, non-numeric node lines (were dropped silently: IndexError),
+    an over-long number (OverflowError): one line naming the deck and its line."""
+    frd = _run(tmp_path)
+    inp = _deck_with(frd, "*SURFACE, NAME=SLAVE, TYPE=ELEMENT\n1, S1\n3, S1\n", surface)
+    with pytest.raises(ValueError, match=words) as exc:
+        read_calculix(frd, units="mm")
+    _one_line_naming(exc, inp)
+
+
+@pytest.mark.parametrize("extra, words", [
+    (", 99999999999999999999999", r"line 75: \*NSET, NSET=MOVED: node number 9999"),
+    (", -4", r"line 75: \*NSET, NSET=MOVED: node number -4 is out of range"),
+    (", SETNAME", r"line 75: \*NSET, NSET=MOVED: expected node numbers"),
+])
+def test_friction_node_set_malformed(tmp_path, extra, words):
+    """An over-long number in *NSET, NSET=MOVED: was OverflowError (exit 3)."""
+    frd = _run(tmp_path, "tet_cubes_friction")
+    text = frd.with_suffix(".inp").read_text()
+    lines = text.splitlines(keepends=True)
+    at = next(i for i, line in enumerate(lines) if line.startswith("*NSET, NSET=MOVED"))
+    inp = _deck_with(frd, lines[at] + lines[at + 1],
+                     lines[at] + lines[at + 1].rstrip("\n") + extra + "\n")
+    assert f"line {at + 2}:" in words  # the data line after the keyword
+    with pytest.raises(ValueError, match=words) as exc:
+        read_calculix_tangential(frd, symmetry="whole")
+    _one_line_naming(exc, inp)
+
+
+_APPROACH = ', "materials": {"body1": {"E": 210000, "nu": 0.3}, "body2": {"E": 210000, ' \
+            '"nu": 0.3}}'
+
+
+@pytest.mark.parametrize("text, key", [
+    # a 400-digit integer: was OverflowError (int too large to convert to float), exit 3
+    ("{" + _UNITS + ', "loads": {"approach": 1' + "0" * 400 + "}}",
+     r"key 'loads\.approach' must be a finite number, got 1000"),
+    ("{" + _UNITS + ', "frame": {"origin": [0, 0, -1' + "0" * 400 + "]}}",
+     r"key 'frame\.origin'"),
+    # past Python's 4300-digit limit: was "Exceeds the limit" without the file
+    ("{" + _UNITS + ',\n"loads": {"approach": 1' + "0" * 5000 + "}}",
+     r"line 2: a number of 5001 digits"),
+    # 5e-324 mm is 0 m: was "depth must be > 0, got 0.0" without file or key
+    ("{" + _UNITS + ', "loads": {"approach": 0.01}, "model": {"far_face_depths": '
+     "[5e-324, 5e-324]}" + _APPROACH + "}", r"key 'model\.far_face_depths' must be a list "
+                                            r"of 2 positive numbers"),
+    ("{" + _UNITS + ', "loads": {"approach": 0.01}, "model": {"far_face_depths": '
+     "[1, 1e400]}" + _APPROACH + "}", r"key 'model\.far_face_depths'"),
+], ids=["int-400-digits", "origin-400-digits", "int-5001-digits", "depths-subnormal",
+        "depths-1e400"])
+def test_problem_json_numbers_out_of_range(tmp_path, text, key):
+    frd = _run(tmp_path, problem=text)
+    problem = frd.parent / "problem.json"
+    with pytest.raises(ValueError, match=key) as exc:
+        read_result(frd, units="mm")
+    assert len(_one_line_naming(exc, problem)) < 400
+
+
+@pytest.mark.parametrize("name", ["tet_cubes", "tet_cubes_friction"])
+def test_problem_json_settlement_not_finite(tmp_path, name):
+    """Depths and E so small that the far faces' settlement (Boussinesq; Cerruti for the
+    frictional reader) overflows: refused naming the keys, not an approach of Infinity or a
+    ZeroDivisionError."""
+    text = ("{" + _UNITS + ', "loads": {"approach": 0.01}, "model": {"far_face_depths": '
+            '[1e-300, 1e-300]}, "materials": {"body1": {"E": 1e-300, "nu": 0.3}, '
+            '"body2": {"E": 1e-300, "nu": 0.3}}}')
+    frd = _run(tmp_path, name, problem=text)
+    with pytest.raises(ValueError, match=r"'model\.far_face_depths'.*not a? ?finite") as exc:
+        read_result(frd, units="mm") if name == "tet_cubes" else \
+            read_calculix_tangential(frd, symmetry="whole")
+    _one_line_naming(exc, frd.parent / "problem.json")
+
+
+@pytest.mark.parametrize("normal", [[1e308, 1e308, 1e308], [5e-324, 5e-324, 5e-324]])
+def test_problem_json_normal_of_huge_or_subnormal_components(tmp_path, normal):
+    """frame.normal_into_body1 [1e308, 1e308, 1e308] said "must be a nonzero vector, got
+    [0, 0, 0]" (or blamed the default x axis): it is the direction (1, 1, 1)."""
+    import warnings
+
+    problem = {"units": {"length": "mm"},
+               "frame": {"origin": [0.0, 0.0, 1.0], "normal_into_body1": normal}}
+    frd = _run(tmp_path, problem=problem)
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        r = read_result(frd)
+    np.testing.assert_allclose(r.frame.normal, np.full(3, 3 ** -0.5), rtol=1e-15)
+    assert abs(r.frame.normal @ r.frame.x_axis) < 1e-15

@@ -154,8 +154,17 @@ def test_meta_force_with_another_unit_is_refused(tmp_path):
 
 def _tangential_files(tmp_path, surface_meta=(), history_rows=None):
     s, h = tmp_path / "surface.csv", tmp_path / "history.csv"
-    lines = ["# mu = 0.3", "# normal_force = 25", "# units = mm", *surface_meta,
-             "x,y,p,qx,qy"]
+    defaults = ["# mu = 0.3", "# normal_force = 25", "# units = mm"]
+    lines, seen = list(defaults), set()
+    for meta in surface_meta:  # the first line of a key replaces its default; more follow
+        key = meta.split("=")[0]
+        at = next((k for k, line in enumerate(defaults) if line.split("=")[0] == key), None)
+        if at is not None and key not in seen:
+            lines[at] = meta
+        else:
+            lines.append(meta)
+        seen.add(key)
+    lines.append("x,y,p,qx,qy")
     lines += [row + ",0,0" for row in _rows()]
     _write(s, lines)
     rows = history_rows or ["0,0", "0.0001,2", "0.0002,4", "0.0001,1", "-0.0002,-4"]
@@ -354,7 +363,8 @@ def test_tangential_snapshot_line(tmp_path, value, words):
                                        ("direction_deg", "inf"), ("normal_force", "nan")])
 def test_tangential_meta_numbers_not_finite_name_the_line(tmp_path, key, value):
     s, h = _tangential_files(tmp_path, [f"# {key} = {value}"])
-    with pytest.raises(ResultError, match=rf"^{s}, line 4"):
+    line = {"mu": 1, "normal_force": 2}.get(key, 4)
+    with pytest.raises(ResultError, match=rf"^{s}, line {line}[:,] {key}"):
         read_tangential(s, h)
 
 
@@ -465,3 +475,185 @@ def test_latin1_text_names_its_line(tmp_path):
 def test_a_device_is_not_a_result_file():
     with pytest.raises(ResultError, match=r"^/dev/zero: not a regular file"):
         read_result("/dev/zero")
+
+
+# --- compressed .vtu: a zip bomb is refused before it inflates (audit of issue 22, item 10) ---
+
+_BOMB = 64 << 20  # bytes of zeros the bomb's CPRESS inflates to (a grid of 81 points needs 648)
+
+
+def _packed(data: bytes, codec, block: int, declare: int | None = None) -> tuple[bytes, bytes]:
+    """(header, blocks) of a VTK compressed array: [blocks, block size, last size, packed
+    sizes...] as UInt32; ``declare`` replaces the inflated sizes the header gives."""
+    chunks = [data[i:i + block] for i in range(0, len(data), block)] or [b""]
+    packed = [codec.compress(c) for c in chunks]
+    full, last = (block, len(chunks[-1])) if declare is None else (declare, declare)
+    if declare is not None and len(chunks) == 1:
+        full = declare
+    header = np.array([len(chunks), full, last, *map(len, packed)], dtype="<u4").tobytes()
+    return header, b"".join(packed)
+
+
+def _compressed_vtu(path, compression, layout, bomb=None, declare=None):
+    """The grid's .vtu written by meshio (compressed, inline base64), then its CPRESS array
+    replaced by ``bomb`` bytes (with ``declare`` as its header's sizes), and its arrays
+    moved to appended data where ``layout`` says ("raw" or "base64")."""
+    import base64
+    import lzma
+    import re
+    import zlib
+
+    codec = {"zlib": zlib, "lzma": lzma}[compression]
+    mesh = meshio.Mesh(POINTS, [("triangle", TRIANGLES)], point_data={"CPRESS": P})
+    meshio.write(path, mesh, binary=True, compression=compression)
+    text = path.read_text()
+    arrays = []
+
+    def take(m):
+        attrs, body = m.group(1), m.group(2).strip()
+        if 'Name="CPRESS"' in attrs and bomb is not None:
+            header, blocks = _packed(bomb, codec, len(bomb), declare)
+        else:
+            n = len(base64.b64decode(body[:8])[:4])
+            count = int(np.frombuffer(base64.b64decode(body[:8])[:n], "<u4")[0])
+            chars = -(-(3 + count) * 4 // 3) * 4
+            header = base64.b64decode(body[:chars])[:(3 + count) * 4]
+            blocks = base64.b64decode(body[chars:])
+        arrays.append((header, blocks))
+        if layout == "inline":
+            return (f"<DataArray{attrs}>" + base64.b64encode(header).decode()
+                    + base64.b64encode(blocks).decode() + "</DataArray>")
+        return f'<DataArray{attrs.replace("binary", "appended")} offset="@{len(arrays) - 1}@"/>'
+
+    text = re.sub(r"<DataArray([^>]*)>(.*?)</DataArray>", take, text, flags=re.S)
+    if layout == "inline":
+        path.write_text(text)
+        return path
+    pieces, offsets, at = [], [], 0
+    for header, blocks in arrays:
+        piece = header + blocks if layout == "raw" else \
+            (base64.b64encode(header) + base64.b64encode(blocks))
+        offsets.append(at)
+        at += len(piece)
+        pieces.append(piece)
+    for k, off in enumerate(offsets):
+        text = text.replace(f'offset="@{k}@"', f'offset="{off}"')
+    head, _, tail = text.rpartition("</VTKFile>")
+    path.write_bytes(head.encode() + f'<AppendedData encoding="{layout}">\n_'.encode()
+                     + b"".join(pieces) + b"\n</AppendedData>\n" + (_ + tail).encode())
+    return path
+
+
+@pytest.mark.parametrize("layout", ["inline", "base64", "raw"])
+@pytest.mark.parametrize("compression", ["zlib", "lzma"])
+def test_compressed_vtu_reads(tmp_path, compression, layout):
+    """The layouts the bomb check parses (inline base64, appended base64, appended raw),
+    compressed with zlib and lzma, read as the plain file does."""
+    plain = read_result(_vtu(tmp_path / "plain.vtu", POINTS, TRIANGLES), force=25.0)
+    res = read_result(_compressed_vtu(tmp_path / "good.vtu", compression, layout), force=25.0)
+    assert res.symmetry == "quarter"
+    np.testing.assert_allclose(res.points, plain.points, rtol=1e-10, atol=0)  # ascii: rounded
+    np.testing.assert_allclose(res.pressure, plain.pressure, rtol=1e-10, atol=0)
+
+
+@pytest.mark.parametrize("layout", ["inline", "base64", "raw"])
+@pytest.mark.parametrize("compression", ["zlib", "lzma"])
+@pytest.mark.parametrize("honest", [True, False])
+def test_compressed_vtu_bomb_is_refused_before_it_inflates(tmp_path, compression, layout,
+                                                           honest):
+    """A CPRESS that inflates to 64 MiB of zeros (the audit's bomb: 3 GiB from a 4 MB file,
+    3.2 GB of memory): a header that declares it is refused by the sizes a grid of 81
+    points can need; one that declares 648 bytes is refused as its block inflates past
+    them.  Nothing near the bomb's size is allocated."""
+    import tracemalloc
+
+    bomb = bytes(_BOMB)
+    path = _compressed_vtu(tmp_path / "bomb.vtu", compression, layout, bomb,
+                           declare=None if honest else 8 * len(P))
+    del bomb
+    words = "refused before inflating" if honest else "inflates past the 648 bytes"
+    tracemalloc.start()
+    try:
+        with pytest.raises(ResultError, match=words) as err:
+            read_result(path, force=25.0)
+        peak = tracemalloc.get_traced_memory()[1]
+    finally:
+        tracemalloc.stop()
+    message = str(err.value)
+    assert message.startswith(f"{path}: DataArray 'CPRESS'") and "\n" not in message
+    assert peak < 16 << 20, peak
+
+
+# --- the frame: huge, zero and subnormal vectors, a far origin (audit, items 12 and 13) ---------
+
+@pytest.mark.parametrize("part,value,words", [
+    ("normal", [0.0, 0.0, 0.0], r"field 'frame\.normal' must be a nonzero vector"),
+    ("x_axis", [0.0, 0.0, 0.0], r"field 'frame\.x_axis' must be a nonzero vector"),
+    ("origin", [1e308, 0.0, 0.0], r"field 'frame\.origin': a coordinate is 1e\+308 m"),
+    ("origin", [1e5, 0.0, 0.0], r"field 'frame\.origin' .* lies 100000 m from nodes"),
+])
+def test_frame_parts_out_of_range_are_one_error(tmp_path, part, value, words):
+    """--normal 0,0,0 blamed the origin after a RuntimeWarning (NaN); --origin 1e308,0,0
+    ended in "SVD did not converge"; an origin 1e5 m off, a RuntimeWarning in the grader."""
+    import warnings
+
+    path = _plain(tmp_path / "plain.csv")
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        with pytest.raises(ResultError, match=rf"^{path}: {words}") as err:
+            read_result(path, frame={part: value})
+    assert "\n" not in str(err.value)
+
+
+@pytest.mark.parametrize("part,value", [
+    ("normal", [0.0, 0.0, 5e-324]), ("normal", [0.0, 0.0, 1e308]),
+    ("normal", [1e-320, 1e-320, 1e308]), ("x_axis", [1e308, 0.0, 0.0]),
+    ("x_axis", [5e-324, 0.0, 0.0])])
+def test_frame_directions_of_huge_or_subnormal_components(tmp_path, part, value):
+    """A direction is its direction at any scale: --normal 1e308,1e308,1e308 said "must be
+    a nonzero vector, got [0, 0, 0]" (its norm overflowed), 0,0,5e-324 gave NaN."""
+    import warnings
+
+    path = _plain(tmp_path / "plain.csv")
+    reference = read_result(path)
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        res = read_result(path, frame={part: value})
+    np.testing.assert_array_equal(res.frame.normal, reference.frame.normal)
+    np.testing.assert_array_equal(res.frame.x_axis, reference.frame.x_axis)
+    skew = ContactFrame(normal=[1e308, 1e308, 1e308], x_axis=[1e308, -1e308, 0.0])
+    np.testing.assert_allclose(skew.normal, np.full(3, 3 ** -0.5), rtol=1e-15)
+    np.testing.assert_allclose(skew.x_axis, [2 ** -0.5, -2 ** -0.5, 0.0], rtol=1e-15, atol=1e-16)
+
+
+# --- contradicting '#' lines (audit, item 17) ------------------------------------------------
+
+@pytest.mark.parametrize("lines,words", [
+    (["# force = 5", "# force = 1000"], r"lines 1 and 2: two '# force' lines contradict each "
+                                        r"other \('5', then '1000'\)"),
+    (["# units = mm", "# force = 25", "# units = SI"], r"lines 1 and 3: two '# units' lines"),
+])
+def test_contradicting_meta_lines_are_refused(tmp_path, lines, words):
+    """The last one silently won."""
+    path = _write(tmp_path / "twice.csv", [*lines, "x,y,p", *_rows()])
+    with pytest.raises(ResultError, match=rf"^{path}, {words}"):
+        read_result(path)
+
+
+def test_repeated_meta_lines_that_agree_are_read(tmp_path):
+    """The same value twice (1000 and 1e3 are one number), or a key no reader uses, is
+    harmless."""
+    path = _write(tmp_path / "twice.csv", [f"# force = {FORCE_MM}", f"# force = {FORCE_MM:e}",
+                                           "# units = mm", "# units = MM", "# note: a",
+                                           "# note: b", "x,y,p", *_rows()])
+    _check_quarter(read_result(path))
+
+
+def test_contradicting_meta_lines_in_the_tangential_and_force_approach_files(tmp_path):
+    s, h = _tangential_files(tmp_path, surface_meta=["# mu = 0.5", "# mu = 0.4"])
+    with pytest.raises(ResultError, match=rf"^{s}, lines 1 and 4: two '# mu' lines"):
+        read_tangential(s, h)
+    fa = _write(tmp_path / "fa.csv", ["# units = mm", "# units = SI", "approach,force", "0,0",
+                                      "1e-3,3"])
+    with pytest.raises(ResultError, match=rf"^{fa}, lines 1 and 2: two '# units' lines"):
+        read_force_approach(fa)

@@ -35,6 +35,7 @@ from __future__ import annotations
 import json
 import math
 import re
+import sys
 from dataclasses import dataclass, field
 from pathlib import Path
 
@@ -47,6 +48,7 @@ from ..results.contact import (
     ContactResult,
     ResultError,
     stress_from_voigt,
+    unit_vector,
 )
 from .common import resolve_frame
 from .frd import FrdFile, FrdResult, read_frd
@@ -65,10 +67,44 @@ SYMMETRY_TOL = 1e-9
 MAX_INP_LINE = 1024
 
 
+#: The largest node or element number a deck may give: what the .frd's int64 arrays hold.
+MAX_ID = (1 << 63) - 1
+
+
+class _Line(str):
+    """A data line of a deck, stripped, with its line ``number`` in the file."""
+
+    number: int
+
+    def __new__(cls, text: str, number: int):
+        line = super().__new__(cls, text)
+        line.number = number
+        return line
+
+
+def deck_id(text: str, where: str, what: str) -> int:
+    """``text`` as a node or element number: 1 to :data:`MAX_ID`.
+
+    Raises
+    ------
+    ResultError
+        Naming ``where`` (file and line) and ``what`` is numbered, where ``text`` is no
+        integer or out of that range (an int64 would overflow).
+    """
+    try:
+        value = int(text)
+    except ValueError:
+        raise ResultError(f"{where}: expected a {what} number, got {text!r}") from None
+    if not 1 <= value <= MAX_ID:
+        shown = text if len(text) <= 30 else f"{text[:12]}...({len(text)} digits)"
+        raise ResultError(f"{where}: {what} number {shown} is out of range (1 to {MAX_ID})")
+    return value
+
+
 def _keyword_blocks(inp_path, keep: tuple[str, ...]):
     """(keyword line, data lines) of the keywords of an .inp starting with one of ``keep``,
     comments dropped, upper-case keywords; read line by line, other keywords' data (the
-    nodes and elements) skipped.
+    nodes and elements) skipped.  Each data line is a str with its line ``number``.
 
     Raises
     ------
@@ -89,7 +125,7 @@ def _keyword_blocks(inp_path, keep: tuple[str, ...]):
                 if current is not None:
                     blocks.append(current)
             elif current is not None:
-                current[1].append(line)
+                current[1].append(_Line(line, number))
     return blocks
 
 
@@ -122,20 +158,29 @@ def slave_surface(inp_path) -> tuple[str, list[tuple[int, int]], list[int]]:
             kind = (_param(key, "TYPE") or "ELEMENT").upper()
             for line in data:
                 parts = [p.strip() for p in line.split(",") if p.strip()]
+                where = f"{inp_path}: line {line.number}: surface {name}"
+                if not parts:
+                    continue
                 if kind == "NODE":
-                    nodes += [int(p) for p in parts[:1] if p.isdecimal()]
+                    if not parts[0].isdecimal():
+                        raise ResultError(f"{where}: expected a node number, got {line!r} "
+                                          f"(node-set names are not read: list the nodes)")
+                    nodes.append(deck_id(parts[0], where, "node"))
                 elif len(parts) >= 2 and parts[0].isdecimal():
                     face = parts[1].upper()
                     if not re.fullmatch(r"S[1-4]", face):
-                        raise ResultError(f"{inp_path}: surface {name}: face {parts[1]!r} of "
-                                          f"element {parts[0]} (tetrahedra have S1..S4)")
-                    faces.append((int(parts[0]), int(face[1])))
+                        raise ResultError(f"{where}: face {parts[1]!r} of element "
+                                          f"{parts[0][:30]} (tetrahedra have S1..S4)")
+                    faces.append((deck_id(parts[0], where, "element"), int(face[1])))
                 else:
-                    raise ResultError(f"{inp_path}: surface {name}: cannot read {line!r} "
+                    raise ResultError(f"{where}: cannot read {line!r} "
                                       f"(expected: element number, S1..S4)")
     if not found:
         raise ResultError(f"{inp_path}: the slave surface {name} of *CONTACT PAIR is not "
                           f"defined by a *SURFACE")
+    if not faces and not nodes:
+        raise ResultError(f"{inp_path}: the slave surface {name} of *CONTACT PAIR has no "
+                          f"faces or nodes (its *SURFACE has no data lines)")
     return name, faces, nodes
 
 
@@ -143,6 +188,9 @@ def _surface(frd: FrdFile, faces, nodes, source: str):
     """Slave node numbers and triangles (as indices into them) from element faces."""
     if nodes and not faces:
         return np.unique(np.asarray(nodes, dtype=np.int64)), None
+    if not len(frd.elements):
+        raise ResultError(f"{frd.path}: holds no elements (no 3C block), so the slave faces "
+                          f"of {source} cannot be found")
     order = np.argsort(frd.elements)
     ids = np.array([f[0] for f in faces], dtype=np.int64)
     pos = order[np.clip(np.searchsorted(frd.elements, ids, sorter=order), 0, len(order) - 1)]
@@ -268,6 +316,12 @@ def read_problem(path) -> Problem:
         raise ResultError(f"{where}, line {exc.lineno}: not JSON ({exc.msg})") from None
     except RecursionError:
         raise ResultError(f"{where}: nested too deeply to be a problem.json") from None
+    except ValueError:  # an integer of more digits than Python converts (4300)
+        digits = re.search(r"\d{1000,}", text)
+        line = text[:digits.start()].count("\n") + 1 if digits else 1
+        raise ResultError(f"{where}, line {line}: a number of "
+                          f"{len(digits.group()) if digits else 'too many'} digits: not a "
+                          f"number a problem.json holds") from None
     if not isinstance(info, dict):
         raise ResultError(f"{where}: must hold a JSON object ({{...}}), got "
                           f"{_json_type(info)}")
@@ -290,13 +344,21 @@ def read_problem(path) -> Problem:
         return kind(node, key)
 
     def fail(key, value, allowed):
-        raise ResultError(f"{where}: key {key!r} must be {allowed}, got {value!r}")
+        shown = repr(value)
+        if len(shown) > 80:  # a 400-digit integer, a long list
+            shown = f"{shown[:40]}... ({len(shown)} characters)"
+        raise ResultError(f"{where}: key {key!r} must be {allowed}, got {shown}")
 
     def number(value, key, low=-math.inf, allowed="a finite number"):
-        if isinstance(value, bool) or not isinstance(value, int | float) \
-                or not low < value < math.inf:
+        if isinstance(value, bool) or not isinstance(value, int | float):
             fail(key, value, allowed)
-        return float(value)
+        try:
+            out = float(value)
+        except OverflowError:  # an integer beyond the largest float
+            fail(key, value, allowed)
+        if not low < out < math.inf:
+            fail(key, value, allowed)
+        return out
 
     def positive(value, key):
         return number(value, key, 0.0, "a positive number")
@@ -311,7 +373,8 @@ def read_problem(path) -> Problem:
         out = vector(value, key)
         if not any(out):
             fail(key, value, "a nonzero vector")
-        return out
+        largest = max(abs(v) for v in out)  # 1e308s, 5e-324s: the direction they give
+        return out if 1e-150 < largest < 1e150 else [v / largest for v in out]
 
     def text_(value, key):
         if not isinstance(value, str):
@@ -331,9 +394,16 @@ def read_problem(path) -> Problem:
         return value
 
     def depths(value, key):
+        # each a normal float in metres too: 5e-324 mm is 0 m, and no depth
+        least = sys.float_info.min / UNIT_FACTORS[units][0]
+        allowed = (f"a list of 2 positive numbers (body 1's, body 2's), each at least "
+                   f"{least:.3g} {length}")
         if not (isinstance(value, list) and len(value) == 2):
-            fail(key, value, "a list of 2 positive numbers (body 1's, body 2's)")
-        return tuple(positive(v, key) for v in value)
+            fail(key, value, allowed)
+        out = tuple(number(v, key, allowed=allowed) for v in value)
+        if not all(d >= least for d in out):
+            fail(key, value, allowed)
+        return out
 
     def material(value, key):
         if not isinstance(value, dict) or not {"E", "nu"} <= set(value):
@@ -434,9 +504,9 @@ def contact_frame(frame, info: Problem | None, to_m: float, points, weight,
                "normal": info.frame.get("normal", [0.0, 0.0, 1.0]),
                "x_axis": info.frame.get("x_axis", [1.0, 0.0, 0.0])}
         parts.setdefault("origin", own["origin"])
-        normal = np.asarray(parts.setdefault("normal", own["normal"]), dtype=float)
-        x_axis = np.asarray(own["x_axis"], dtype=float)
-        if "x_axis" not in parts and abs(normal @ x_axis) <= 1e-6 * np.linalg.norm(normal):
+        normal = unit_vector(parts.setdefault("normal", own["normal"]), "frame.normal", source)
+        x_axis = unit_vector(own["x_axis"], "frame.x_axis", source)
+        if "x_axis" not in parts and abs(normal @ x_axis) <= 1e-6:
             parts["x_axis"] = x_axis
     elif frame is None:
         return ContactFrame(source=source)
@@ -610,8 +680,16 @@ def _approach(info: Problem, force: float, to_m: float, to_pa: float) -> float |
     total = info.approach * to_m
     materials = info.need_materials("the settlement of the far faces (loads.approach, "
                                     "model.far_face_depths)")
-    for (E, nu), depth in zip(materials, info.far_face_depths, strict=True):
-        total += boussinesq_settlement(force, E * to_pa, nu, depth * to_m)
+    try:
+        for (E, nu), depth in zip(materials, info.far_face_depths, strict=True):
+            total += boussinesq_settlement(force, E * to_pa, nu, depth * to_m)
+    except (ArithmeticError, ValueError):  # E times depth underflows to 0
+        total = math.nan
+    if not math.isfinite(total):
+        raise ResultError(f"problem.json {info.path!r}: keys 'loads.approach', "
+                          f"'model.far_face_depths' and 'materials' give an approach of "
+                          f"{total} m at the force {force:.6g} N, not a finite number: "
+                          f"check their values")
     return total
 
 

@@ -49,6 +49,7 @@ from .calculix import (
     _symmetry,
     components,
     contact_frame,
+    deck_id,
     deck_units,
     problem_beside,
     slave_surface,
@@ -68,11 +69,12 @@ def node_set(inp_path, name: str) -> np.ndarray:
         if key.startswith("*NSET") and (_param(key, "NSET") or "").upper() == name.upper():
             found = True
             for line in data:
-                try:
-                    numbers += [int(p) for p in line.split(",") if p.strip()]
-                except ValueError:
-                    raise ResultError(f"{inp_path}: *NSET, NSET={name}: expected node "
-                                      f"numbers, got {line!r}") from None
+                where = f"{inp_path}: line {line.number}: *NSET, NSET={name}"
+                for part in (p.strip() for p in line.split(",")):
+                    if part and not part.lstrip("+-").isdecimal():
+                        raise ResultError(f"{where}: expected node numbers, got {line!r}")
+                    if part:
+                        numbers.append(deck_id(part, where, "node"))
     if not found:
         raise ResultError(f"{inp_path}: no node set {name} (*NSET, NSET={name})")
     return np.unique(np.asarray(numbers, dtype=np.int64))
@@ -211,8 +213,17 @@ def read_calculix_tangential(path, inp=None, problem=None, units: str | None = N
         depths = [d * to_m for d in info.far_face_depths]
         mats = info.need_materials("the Cerruti settlement of the far faces "
                                    "(model.far_face_depths)")
-        correction = sum(cerruti_settlement(1.0, E * to_pa, nu, h)
-                         for (E, nu), h in zip(mats, depths, strict=True))
+        try:
+            correction = sum(cerruti_settlement(1.0, E * to_pa, nu, h)
+                             for (E, nu), h in zip(mats, depths, strict=True))
+        except (ArithmeticError, ValueError):  # E times depth underflows to 0
+            correction = np.nan
+        with np.errstate(all="ignore"):
+            finite = np.isfinite(correction * np.abs(fx).max())
+        if not finite:
+            raise ResultError(f"problem.json {info.path!r}: keys 'model.far_face_depths' and "
+                              f"'materials' give a Cerruti compliance of {correction} m/N, "
+                              f"which at the path's forces is not finite: check their values")
         note = ("imposed displacement of MOVED plus Q (3 - 2 nu)/(8 pi G H) per block "
                 "(Cerruti on the axis at the depth H of its far face)")
     displacement = sense * (d1 + correction * fx)

@@ -26,7 +26,14 @@ from __future__ import annotations
 
 import numpy as np
 
-from ..results.contact import MULTIPLICITY, ContactFrame, ContactResult, ResultError, surface_points
+from ..results.contact import (
+    MULTIPLICITY,
+    ContactFrame,
+    ContactResult,
+    ResultError,
+    surface_points,
+    unit_vector,
+)
 
 #: Units of a file -> (metres per length unit, newtons per force unit, pascals per
 #: pressure unit).
@@ -75,8 +82,11 @@ def find_frame(points: np.ndarray, weight: np.ndarray, symmetric: bool,
             n = axis  # a plane of coordinates: keep the axis exact
         k = 2 if abs(n[2]) > 1e-6 else 1 if abs(n[1]) > 1e-6 else 0
         normal = n if n[k] > 0 else -n
-    normal = np.asarray(normal, dtype=float)
-    normal = normal / np.linalg.norm(normal)
+        normal = normal / np.linalg.norm(normal)
+    else:
+        normal = unit_vector(normal, "frame.normal", source)  # as given: huge, tiny or 0
+    if x_axis is not None:
+        x_axis = unit_vector(x_axis, "frame.x_axis", source)
     if x_axis is None:
         for axis in np.eye(3):
             v = axis - (axis @ normal) * normal

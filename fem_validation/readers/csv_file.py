@@ -115,6 +115,45 @@ class Column:
     kind: str
 
 
+def _same_meta(a: str, b: str) -> bool:
+    """Two ``# key`` values that say the same: the same words, or the same number."""
+    if " ".join(a.lower().split()) == " ".join(b.lower().split()):
+        return True
+    try:
+        return float(a) == float(b)
+    except ValueError:
+        return False
+
+
+class _Meta(dict):
+    """``{key: (text, line)}`` of a file's ``# key = value`` lines, the first of each key.
+
+    A key given twice with values that differ is kept as a contradiction: reading it
+    (``meta[key]``) raises a ResultError naming both lines; a key no reader asks for (a
+    ``# note:`` line, say) may repeat freely.
+    """
+
+    def __init__(self, src: str):
+        super().__init__()
+        self.src = src
+        self.conflicts: dict = {}
+
+    def add(self, key: str, text: str, line: int) -> None:
+        if not dict.__contains__(self, key):
+            dict.__setitem__(self, key, (text, line))
+            return
+        first, first_line = dict.__getitem__(self, key)
+        if key not in self.conflicts and not _same_meta(first, text):
+            self.conflicts[key] = (first_line, first, line, text)
+
+    def __getitem__(self, key: str):
+        if key in self.conflicts:
+            first_line, first, line, text = self.conflicts[key]
+            raise ResultError(f"{self.src}, lines {first_line} and {line}: two '# {key}' lines "
+                              f"contradict each other ({first!r}, then {text!r}): keep one")
+        return dict.__getitem__(self, key)
+
+
 @dataclass
 class Table:
     """The columns a reader asked for, as numbers, with where each row came from.
@@ -332,7 +371,7 @@ def read_table(path, choose) -> Table:
     """
     path = Path(path)
     src = str(path)
-    meta: dict = {}
+    meta = _Meta(src)
     table: Table | None = None
     delimiter, picked = ",", ()
     numbers, lines = array("d"), array("q")
@@ -355,7 +394,7 @@ def read_table(path, choose) -> Table:
                 line = raw.rstrip("\r\n")
                 m = _META.match(line) or _META.match(line.lstrip().lstrip('"'))
                 if m:
-                    meta[m.group(1).lower()] = (m.group(2).rstrip(",;\t ").strip('"'), lineno)
+                    meta.add(m.group(1).lower(), m.group(2).rstrip(",;\t ").strip('"'), lineno)
                     continue
                 stripped = line.strip()
                 if (not stripped.strip(",;\t\" ") or stripped.startswith("#")

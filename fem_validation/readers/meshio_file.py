@@ -21,8 +21,13 @@ split into four linear triangles through their mid-side nodes.
 
 from __future__ import annotations
 
+import base64
+import binascii
 import contextlib
 import io
+import lzma
+import re
+import zlib
 from pathlib import Path
 
 import numpy as np
@@ -205,6 +210,210 @@ def _bodies(mesh, n_points: int):
     return labels, corners
 
 
+#: The most bytes the compressed arrays of a .vtu may inflate to, in all (2 GiB), and per
+#: point and cell its pieces declare (4 KiB: 512 float64 values; plus 1 MiB).
+MAX_INFLATED = 2 << 30
+INFLATED_PER_ITEM = 4096
+#: Bytes of inflated output checked at a time.
+_INFLATE_STEP = 1 << 20
+_VTU_HEADER_TYPES = {"UInt32": 4, "UInt64": 8}
+
+
+#: An XML attribute, matched only from the start of its name (no quadratic backtracking
+#: through a long run of name characters).
+_ATTRIBUTE = re.compile(rb'(?<![\w:])([\w:]+)\s*=\s*"([^"]*)"')
+
+
+def _xml_attributes(tag: bytes) -> dict:
+    return {k.decode("latin-1"): v.decode("latin-1")
+            for k, v in _ATTRIBUTE.findall(tag)}
+
+
+def _inflated_size(block: bytes, decompressor, limit: int) -> int | None:
+    """The bytes ``block`` inflates to, found ``_INFLATE_STEP`` at a time; None once past
+    ``limit`` (nothing more is inflated)."""
+    produced = 0
+    if hasattr(decompressor, "unconsumed_tail"):  # zlib
+        data = block
+        while True:
+            out = decompressor.decompress(data, _INFLATE_STEP)
+            produced += len(out)
+            if produced > limit:
+                return None
+            data = decompressor.unconsumed_tail
+            if not data and len(out) < _INFLATE_STEP:
+                return produced
+    out = decompressor.decompress(block, _INFLATE_STEP)  # lzma
+    while True:
+        produced += len(out)
+        if produced > limit:
+            return None
+        if decompressor.eof or decompressor.needs_input:
+            return produced
+        out = decompressor.decompress(b"", _INFLATE_STEP)
+
+
+def check_vtu_inflation(path, src: str) -> None:
+    """Refuse a compressed .vtu whose arrays would inflate past what a result needs, before
+    meshio inflates them (it inflates every block whole, trusting nothing but the data).
+
+    The header of each compressed DataArray (vtkZLibDataCompressor or
+    vtkLZMADataCompressor; inline base64, appended base64 or appended raw) gives its
+    blocks' inflated sizes: their sum over the file must stay within
+    :data:`INFLATED_PER_ITEM` bytes per point and cell its pieces declare (plus 1 MiB),
+    and within :data:`MAX_INFLATED`; then each block is inflated a step at a time, the
+    output dropped, and must not exceed the size its header declares.  A file that is not
+    compressed, or whose layout this scan cannot make out, is left to meshio (whose error
+    names the file).
+
+    Raises
+    ------
+    ResultError
+        Naming the file and the DataArray.
+    """
+    import mmap
+
+    try:
+        with open(path, "rb") as f:
+            mm = mmap.mmap(f.fileno(), 0, access=mmap.ACCESS_READ)
+    except (OSError, ValueError):  # empty, or not a regular file: meshio says what it is
+        return
+    with mm:
+        _scan_vtu(mm, src)
+
+
+def _b64(data: bytes, where: str) -> bytes:
+    try:
+        return base64.b64decode(data)
+    except binascii.Error as exc:
+        raise ResultError(f"{where}: not base64 data ({exc}): the file is cut or corrupt") \
+            from None
+
+
+_VTKFILE = re.compile(rb"<VTKFile\b([^>]{0,4096})>")
+_APPENDED = re.compile(rb"<AppendedData\b([^>]{0,4096})>")
+_PIECE = re.compile(rb"<Piece\b([^>]{0,4096})>")
+_DATA_ARRAY = re.compile(rb"<DataArray\b([^>]{0,4096})>")
+_CORRUPT = (zlib.error, lzma.LZMAError, EOFError)
+
+
+def _data_arrays(mm, end: int, src: str):
+    """The DataArray start tags before ``end``; one longer than 4096 characters (which the
+    scan would pass over unchecked) is refused."""
+    at = mm.find(b"<DataArray", 0, end)
+    while at >= 0:
+        tag = _DATA_ARRAY.match(mm, at, end)
+        if tag is not None:
+            yield tag
+        elif not mm[at + 10:at + 11].isalnum():
+            raise ResultError(f"{src}, byte {at}: a DataArray tag longer than 4096 "
+                              f"characters: not a mesh file (is it the right file?)")
+        at = mm.find(b"<DataArray", at + 10, end)
+
+
+def _scan_vtu(mm, src: str) -> None:
+    """:func:`check_vtu_inflation` on the file's bytes ``mm``."""
+    root = _VTKFILE.search(mm, 0, 1 << 16)
+    if root is None:
+        return
+    attrs = _xml_attributes(root.group(1))
+    make = {"vtkZLibDataCompressor": zlib.decompressobj,
+            "vtkLZMADataCompressor": lzma.LZMADecompressor}.get(attrs.get("compressor", ""))
+    size = _VTU_HEADER_TYPES.get(attrs.get("header_type", "UInt32"))
+    if make is None or size is None:
+        return
+    item = np.dtype(f"{'>' if attrs.get('byte_order') == 'BigEndian' else '<'}u{size}")
+    appended = _APPENDED.search(mm)
+    end = appended.start() if appended else len(mm)
+    raw_at = b64_at = None  # where the appended data start, after its "_"
+    if appended is not None:
+        underscore = mm.find(b"_", appended.end())
+        if underscore < 0:
+            return
+        if _xml_attributes(appended.group(1)).get("encoding") == "raw":
+            raw_at = underscore + 1
+        else:
+            b64_at = underscore + 1
+
+    def integer(text: str) -> int:
+        try:
+            return max(int(text), 0)
+        except ValueError:
+            return 0
+
+    points = cells = 0
+    for piece in _PIECE.finditer(mm, 0, end):
+        a = _xml_attributes(piece.group(1))
+        points += integer(a.get("NumberOfPoints", "0"))
+        cells += integer(a.get("NumberOfCells", "0"))
+    cap = min(MAX_INFLATED, (1 << 20) + INFLATED_PER_ITEM * (points + cells))
+
+    arrays, total = [], 0
+    for tag in _data_arrays(mm, end, src):
+        a = _xml_attributes(tag.group(1))
+        fmt = a.get("format", "ascii")
+        if fmt == "binary":
+            at, raw = tag.end(), False
+            while at < len(mm) and mm[at:at + 1].isspace():
+                at += 1
+        elif fmt == "appended" and raw_at is not None:
+            at, raw = raw_at + integer(a.get("offset", "0")), True
+        elif fmt == "appended" and b64_at is not None:
+            at, raw = b64_at + integer(a.get("offset", "0")), False
+        else:
+            continue
+        where = f"{src}: DataArray {a.get('Name', '?')!r}"
+
+        def decoded(start: int, n: int, raw=raw, where=where) -> bytes:
+            """``n`` bytes from ``start``, as they are (raw) or base64-decoded."""
+            if raw:
+                return bytes(mm[start:start + n])
+            return _b64(bytes(mm[start:start - (-n // 3) * 4]), where)[:n]
+
+        first = decoded(at, size)
+        if len(first) < size:
+            continue
+        blocks = int(np.frombuffer(first, item)[0])
+        after = (len(mm) - at) * (1 if raw else 3) // (1 if raw else 4)
+        if (3 + blocks) * size > after:
+            raise ResultError(f"{where}: its compression header announces {blocks} blocks, "
+                              f"more than the {after} bytes after it hold: the file is cut "
+                              f"or corrupt")
+        head_size = (3 + blocks) * size
+        head = np.frombuffer(decoded(at, head_size), item).astype(np.int64)
+        if len(head) < 3 + blocks:
+            continue
+        sizes = [int(head[1])] * blocks
+        if blocks and head[2]:
+            sizes[-1] = int(head[2])
+        total += sum(sizes)
+        if total > cap:
+            raise ResultError(f"{where}: the compressed arrays declare {total} bytes once "
+                              f"inflated (this one {sum(sizes)}); a grid of {points} points "
+                              f"and {cells} cells needs at most {cap}: refused before "
+                              f"inflating them (a zip bomb, or a corrupt header?)")
+        packed = head[3:].tolist()
+        start = at + (head_size if raw else -(-head_size // 3) * 4)
+        arrays.append((where, start, raw, sizes, packed))
+
+    for where, start, raw, sizes, packed in arrays:
+        if raw:
+            data, start = mm, start
+        else:
+            data, start = _b64(bytes(mm[start:start - (-sum(packed) // 3) * 4]), where), 0
+        for k, (want, length) in enumerate(zip(sizes, packed, strict=True)):
+            try:
+                got = _inflated_size(bytes(data[start:start + length]), make(), want)
+            except _CORRUPT as exc:
+                raise ResultError(f"{where}: compressed block {k} is corrupt ({exc})"[:400]) \
+                    from None
+            if got is None:
+                raise ResultError(f"{where}: compressed block {k} inflates past the {want} "
+                                  f"bytes its header declares: refused (a zip bomb, or a "
+                                  f"corrupt file)")
+            start += length
+
+
 def read_mesh(path, *, units: str | None = None, symmetry: str | None = None,
               force: float | None = None, frame: ContactFrame | None = None,
               fields: dict | None = None) -> ContactResult:
@@ -222,6 +431,8 @@ def read_mesh(path, *, units: str | None = None, symmetry: str | None = None,
     src = str(path)
     fields = dict(fields or {})
     units = units or "SI"
+    if path.suffix.lower() == ".vtu":
+        check_vtu_inflation(path, src)
     try:  # meshio prints its complaints and may call sys.exit: keep it quiet, catch both
         with contextlib.redirect_stdout(io.StringIO()), contextlib.redirect_stderr(io.StringIO()):
             mesh = meshio.read(path)

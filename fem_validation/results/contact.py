@@ -111,6 +111,10 @@ def _array(value, name: str, source: str, shape: tuple, dtype=np.float64,
 MAX_COORDINATE = 1e6
 MIN_EXTENT = 1e-12
 MIN_RELATIVE_EXTENT = 1e-8
+#: The farthest a frame's origin may lie from a node of the contact surface, in spans of
+#: the surface: it is the first point of contact, and frame coordinates of nodes much
+#: farther away than they are apart lose the digits that tell them apart.
+FRAME_REACH = 1e4
 #: Nodes whose second principal spread is below this fraction of the first lie on a line.
 LINE_TOLERANCE = 1e-9
 
@@ -160,6 +164,28 @@ def surface_points(points, source: str) -> np.ndarray:
     return pts
 
 
+def unit_vector(value, name: str, source: str = "") -> np.ndarray:
+    """``value`` (3 finite numbers, not all 0) scaled to length 1.
+
+    Scaled by its largest component first, so that a direction of huge (1e308) or
+    subnormal (5e-324) components is the direction it gives, not 0 or NaN (its norm
+    overflows or underflows).
+
+    Raises
+    ------
+    ResultError
+        Naming ``source`` and the field ``name``: not 3 finite numbers, or all 0.
+    """
+    v = np.array(_array(value, name, source, (3,)))
+    largest = np.abs(v).max()
+    if not largest > 0:
+        raise ResultError(f"{_where(source)}field {name!r} must be a nonzero vector, got "
+                          f"{v.tolist()}")
+    if not 1e-150 < largest < 1e150:  # its squares would overflow or underflow
+        v /= largest
+    return v / np.linalg.norm(v)
+
+
 def _check_symmetry(symmetry, source: str) -> None:
     if symmetry not in MULTIPLICITY:
         raise ResultError(f"{_where(source)}field 'symmetry' must be one of "
@@ -173,6 +199,14 @@ def _check_frame_and_triangles(result, n: int) -> None:
     if not isinstance(result.frame, ContactFrame):
         raise ResultError(f"{w}field 'frame' must be a ContactFrame, "
                           f"got {type(result.frame).__name__}")
+    pts, origin = result.points, result.frame.origin
+    extent = float(np.ptp(pts, axis=0).max())
+    distance = float(np.abs(pts - origin).max())
+    if not distance <= FRAME_REACH * extent:
+        raise ResultError(f"{w}field 'frame.origin' {origin.tolist()} lies {distance:.6g} m "
+                          f"from nodes of the contact surface, which spans {extent:.6g} m; "
+                          f"the origin is the first point of contact, within {FRAME_REACH:g} "
+                          f"times the surface's span of its nodes (are its units right?)")
     if _on_a_line(result.frame.to_frame(result.points)[:, :2]):
         raise ResultError(f"{w}field 'frame': seen along its normal {result.frame.normal}, "
                           f"the {n} nodes lie on one line: the normal lies in the surface")
@@ -227,13 +261,13 @@ class ContactFrame:
     def __post_init__(self):
         s = self.source
         origin = _array(self.origin, "frame.origin", s, (3,))
-        normal = np.array(_array(self.normal, "frame.normal", s, (3,)))
-        x_axis = np.array(_array(self.x_axis, "frame.x_axis", s, (3,)))
-        for name, v in (("frame.normal", normal), ("frame.x_axis", x_axis)):
-            if not np.linalg.norm(v) > 0:
-                raise ResultError(f"{_where(s)}field {name!r} must be a nonzero vector, got {v}")
-        normal /= np.linalg.norm(normal)
-        x_axis /= np.linalg.norm(x_axis)
+        far = float(np.abs(origin).max())
+        if not far <= MAX_COORDINATE:
+            raise ResultError(f"{_where(s)}field 'frame.origin': a coordinate is {far:.6g} m; "
+                              f"the first point of contact lies within {MAX_COORDINATE:g} m "
+                              f"of its model's origin: are the units right?")
+        normal = unit_vector(self.normal, "frame.normal", s)
+        x_axis = unit_vector(self.x_axis, "frame.x_axis", s)
         if abs(normal @ x_axis) > 1e-6:
             raise ResultError(f"{_where(s)}field 'frame.x_axis' must lie in the contact plane "
                               f"(orthogonal to the normal {normal}), got {x_axis} "
