@@ -11,14 +11,10 @@ DOCS = ROOT / "docs"
 
 
 def cpu_name() -> str:
-    try:
-        with open("/proc/cpuinfo") as f:
-            for line in f:
-                if line.startswith("model name"):
-                    return line.split(":", 1)[1].strip()
-    except OSError:
-        pass
-    return platform.processor() or platform.machine()
+    """The processor's name, as ``hertz.show_config()`` reports it."""
+    from hertz._build_info import _cpu_name
+
+    return _cpu_name()
 
 
 def describe() -> str:
