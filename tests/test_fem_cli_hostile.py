@@ -147,7 +147,8 @@ def test_import_needs_no_solver_and_every_public_name_resolves():
                  if m in sys.modules]
         print(heavy, fv.scene_from_toml.__module__, fv.ContactResult.__module__)
     """)], capture_output=True, text=True, env={"PYTHONPATH": str(ROOT), "PATH": "/usr/bin"})
-    assert done.stdout.split() == ["[]", "fem_validation.scenes", "fem_validation.results.contact"], \
+    expected = ["[]", "fem_validation.scenes", "fem_validation.results.contact"]
+    assert done.stdout.split() == expected, \
         done.stderr
     for name in fem_validation.__all__:  # today's names, each the object of its module
         value = getattr(fem_validation, name)

@@ -238,7 +238,8 @@ def arc_positions(xyz: np.ndarray, radius: float) -> np.ndarray:
 
 
 def curved_result(scene: CurvedScene, mesh: CurvedMesh, sol: CurvedSolution) -> ContactResult:
-    """A curved run as a :class:`~fem_validation.results.contact.ContactResult` (what the grader sees).
+    """A curved run as a :class:`~fem_validation.results.contact.ContactResult` (what the
+    grader sees).
 
     Points: the ball's slave nodes (undeformed); nodal normal forces: their vertical
     contact forces (quarter model); force: the vertical resultant of the whole
