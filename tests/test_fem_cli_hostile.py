@@ -364,6 +364,10 @@ def test_negative_numbers_are_values_as_written():
     (["--curved", "--a-over-r", "-0.1"], "must be a finite number > 0, got '-0.1'"),
     (["--alpha", "3", "--amg-rebuild", "-1e-3"], "--amg-rebuild must be a fraction > 0"),
     (["friction", "--mu", "-1e-1"], "--mu must be a finite number > 0"),
+    (["grade", "C", "--scene", "S", "--normal", "0,0,0"],
+     "argument --normal: a direction cannot be the zero vector"),
+    (["grade", "C", "--scene", "S", "--x-axis", "-0", "0", "0"],
+     "argument --x-axis: a direction cannot be the zero vector"),
 ])
 def test_a_negative_number_reaches_its_check(capsys, tmp_path, scene, curve, argv, message):
     """Not "expected one argument": the option's own check names the value."""

@@ -29,8 +29,8 @@ from ..limits import MAX_TEXT_BYTES
 
 __all__ = ["EXIT_FAILED", "FEM_RUN", "EXIT_INTERNAL", "EXIT_INTERRUPTED", "EXIT_USAGE", "OPTIONAL",
            "MissingExtra", "OneLineParser", "Unknown", "UsageError", "add_overwrite", "choices",
-           "fem_constants", "finite", "guarded", "index", "out_dir", "positive", "require",
-           "small_input", "vector"]
+           "direction", "fem_constants", "finite", "guarded", "index", "out_dir", "positive",
+           "require", "small_input", "vector"]
 
 EXIT_FAILED = 1
 EXIT_USAGE = 2
@@ -102,6 +102,14 @@ def vector(text: str) -> list[float]:
     return v
 
 
+def direction(text: str) -> list[float]:
+    """A direction: three finite numbers, not all zero (an option type, as :func:`vector`)."""
+    v = vector(text)
+    if not any(v):
+        raise argparse.ArgumentTypeError(f"a direction cannot be the zero vector: {text!r}")
+    return v
+
+
 def _number(text: str) -> float:
     try:
         return float(text)
@@ -168,7 +176,7 @@ class OneLineParser(argparse.ArgumentParser):
         names = [s for s in self._option_string_actions if s.startswith(token)]
         action = (self._option_string_actions[token] if token in self._option_string_actions
                   else self._option_string_actions[names[0]] if len(names) == 1 else None)
-        return action if action is not None and action.type is vector else None
+        return action if action is not None and action.type in (vector, direction) else None
 
     def parse_known_args(self, args=None, namespace=None):
         args = list(sys.argv[1:] if args is None else args)

@@ -33,6 +33,7 @@ from .common import (
     OneLineParser,
     UsageError,
     add_overwrite,
+    direction,
     finite,
     guarded,
     index,
@@ -107,9 +108,9 @@ def parser() -> OneLineParser:
     p.add_argument("--origin", type=vector, metavar="X,Y,Z",
                    help="contact point in the file's coordinates, in --units (default: found; "
                         "what is not given of origin, normal, x axis is found)")
-    p.add_argument("--normal", type=vector, metavar="X,Y,Z",
+    p.add_argument("--normal", type=direction, metavar="X,Y,Z",
                    help="contact normal pointing into body 1 (default: found, along +z)")
-    p.add_argument("--x-axis", type=vector, metavar="X,Y,Z",
+    p.add_argument("--x-axis", type=direction, metavar="X,Y,Z",
                    help="body 1's x axis in the contact plane (default: the file's x axis)")
     p.add_argument("--semi-axes", choices=("auto", "moments", "fit"), default="auto",
                    help="a, b from the moments of the nodal forces or from the p^2 fit "
