@@ -19,10 +19,10 @@ alias.
 
 from __future__ import annotations
 
-import ast
 from pathlib import Path
 
 import pytest
+from import_graph import cycles, import_graph, modules
 
 ROOT = Path(__file__).resolve().parent.parent
 PACKAGE = ROOT / "fem_validation"
@@ -33,76 +33,9 @@ LAYERS = {"__main__": 7, "cli": 6, "runs": 5, "decks": 5, "reports": 4, "solvers
 BASE = {"errors", "memory", "limits", "scenes", "halfspace", "_deprecated"}
 
 
-def modules(package: Path) -> dict[str, tuple[Path, bool]]:
-    """Dotted module name -> (file, is a package's __init__) for every module below."""
-    out = {}
-    for f in sorted(package.rglob("*.py")):
-        parts = list(f.relative_to(package.parent).with_suffix("").parts)
-        is_init = parts[-1] == "__init__"
-        out[".".join(parts[:-1] if is_init else parts)] = (f, is_init)
-    return out
-
-
 def deprecated(path: Path) -> bool:
     """An old module path kept one release (fem_validation._deprecated.alias)."""
     return "from fem_validation._deprecated import alias" in path.read_text()
-
-
-def import_graph(package: Path) -> dict[str, set[str]]:
-    """Module -> the modules of the same package it imports (every import statement)."""
-    mods = modules(package)
-    graph = {m: set() for m in mods}
-    for mod, (path, is_init) in mods.items():
-        for node in ast.walk(ast.parse(path.read_text(), str(path))):
-            if isinstance(node, ast.Import):
-                names = [a.name for a in node.names]
-            elif isinstance(node, ast.ImportFrom):
-                if node.level:
-                    base = mod.split(".") if is_init else mod.split(".")[:-1]
-                    base = base[:len(base) - node.level + 1]
-                    start = ".".join(base + ([node.module] if node.module else []))
-                else:
-                    start = node.module or ""
-                names = [start] + [f"{start}.{a.name}" for a in node.names]
-            else:
-                continue
-            for name in names:
-                while name and name not in mods:
-                    name = name.rpartition(".")[0]
-                if name and name != mod:
-                    graph[mod].add(name)
-    return graph
-
-
-def cycles(graph: dict[str, set[str]]) -> list[list[str]]:
-    """The strongly connected components with more than one module (Tarjan)."""
-    index, low, stack, on, out = {}, {}, [], set(), []
-
-    def visit(v):
-        index[v] = low[v] = len(index)
-        stack.append(v)
-        on.add(v)
-        for w in graph[v]:
-            if w not in index:
-                visit(w)
-                low[v] = min(low[v], low[w])
-            elif w in on:
-                low[v] = min(low[v], index[w])
-        if low[v] == index[v]:
-            comp = []
-            while True:
-                w = stack.pop()
-                on.discard(w)
-                comp.append(w)
-                if w == v:
-                    break
-            if len(comp) > 1:
-                out.append(sorted(comp))
-
-    for v in graph:
-        if v not in index:
-            visit(v)
-    return out
 
 
 def role(module: str) -> str:
