@@ -17,7 +17,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from .model import DeckModel
+from .model import DeckModel, in_range
 
 #: Length, force and stress factors from SI to each unit system.
 UNITS = {"SI": {"length": 1.0, "force": 1.0, "stress": 1.0,
@@ -91,8 +91,7 @@ def check_mu(mu) -> float:
         Naming the parameter, the range and the value.
     """
     low, high = FRICTION_MU_RANGE
-    if isinstance(mu, bool) or not isinstance(mu, int | float) or not (
-            math.isfinite(mu) and low <= mu <= high):
+    if not in_range(mu, low, high):
         raise ValueError(f"mu must be a finite number in [{low:g}, {high:g}] (a coefficient "
                          f"of friction of solids), got {mu!r}")
     return mu
@@ -106,8 +105,7 @@ def check_ratio(ratio) -> float:
     ValueError
         Naming the parameter, the range and the value.
     """
-    if isinstance(ratio, bool) or not isinstance(ratio, int | float) or not (
-            MIN_FRICTION_RATIO <= ratio < 1):
+    if not in_range(ratio, MIN_FRICTION_RATIO, 1.0, open_high=True):
         raise ValueError(f"friction ratio must be in (0, 1), at least {MIN_FRICTION_RATIO:g} "
                          f"(Q*/(mu P) at the end of the ramp: 1 is gross sliding, below "
                          f"{MIN_FRICTION_RATIO:g} the slip annulus is far below an element), "
@@ -123,8 +121,7 @@ def check_increments(increments) -> int:
     ValueError
         Naming the parameter, the range and the value.
     """
-    if isinstance(increments, bool) or not isinstance(increments, int) or not (
-            1 <= increments <= MAX_FRICTION_INCREMENTS):
+    if not in_range(increments, 1, MAX_FRICTION_INCREMENTS, kind=int):
         raise ValueError(f"friction increments must be an integer from 1 to "
                          f"{MAX_FRICTION_INCREMENTS} (the ramp's; the loop takes 5N + 1 "
                          f"increments of ccx, each about 100 s of CPU at level 0), got "

@@ -258,8 +258,7 @@ def check_scene(scene: Scene) -> hertz.Contact:
         Naming the scene, the load or the ratio a/R_min, and the range allowed.
     """
     load = scene.load
-    if isinstance(load, bool) or not isinstance(load, int | float) or not (
-            math.isfinite(load) and load > 0):
+    if not in_range(load, math.ulp(0.0), math.inf, open_high=True):
         raise ValueError(f"scene {scene.name!r}: load must be a finite number > 0 [N] (a deck "
                          f"prescribes the approach that reaches it), got {load!r}")
     c = scene.hertz()
@@ -275,6 +274,14 @@ def check_scene(scene: Scene) -> hertz.Contact:
     return c
 
 
+def in_range(value, low: float, high: float, *, kind=int | float, open_high: bool = False) -> bool:
+    """Whether ``value`` is a number of ``kind`` (never a bool) with low <= value <= high
+    (< high with ``open_high``): the test behind every deck option's range check."""
+    if isinstance(value, bool) or not isinstance(value, kind):
+        return False
+    return low <= value < high if open_high else low <= value <= high
+
+
 def check_penalty_factor(penalty_factor) -> float:
     """``penalty_factor`` (the penalty slope over E*/h0) if it is in :data:`PENALTY_FACTOR_RANGE`.
 
@@ -284,8 +291,7 @@ def check_penalty_factor(penalty_factor) -> float:
         Naming the parameter, the range and the value.
     """
     low, high = PENALTY_FACTOR_RANGE
-    if isinstance(penalty_factor, bool) or not isinstance(penalty_factor, int | float) or not (
-            math.isfinite(penalty_factor) and low <= penalty_factor <= high):
+    if not in_range(penalty_factor, low, high):
         raise ValueError(f"penalty_factor must be a finite number > 0 in [{low:g}, {high:g}] "
                          f"(the penalty slope over E*/h0: below {low:g} the overclosure "
                          f"exceeds Hertz's approach, above {high:g} the contact swamps the "
