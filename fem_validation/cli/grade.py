@@ -119,6 +119,7 @@ def parser() -> OneLineParser:
                    help="override a tolerance (repeatable), e.g. p0_rel_err=0.01")
     p.add_argument("--tolerances", type=Path, metavar="FILE.toml",
                    help="tolerances from a TOML file (NAME = VALUE lines)")
+    # mode hooks (parser): each grade mode in its own module adds its options here
     p.add_argument("--out", type=Path, default=Path("grade_out"), help="output directory")
     add_overwrite(p, "an earlier grade's grade.json, .md and .png are replaced without it")
     return p
@@ -194,6 +195,7 @@ def run(argv: list[str]) -> int:
     from ..scenes import scene_from_toml
 
     command = " ".join(["python -m fem_validation grade", *argv])
+    # mode hooks (run): a mode in its own module returns its exit status here
     inputs = [x for x in (args.result, args.force_approach, args.tangential) if x is not None]
     if len(inputs) != 1:
         raise UsageError("python -m fem_validation grade: give a RESULT file, "
