@@ -1224,6 +1224,11 @@ def contact(body1: Body, body2: Body, load=None, angle=0.0, *, approach=None,
     1319.7 N gives p0 = 2 GPa
     """
     if approach is None and p0 is None:
+        # two bodies of floats and a float load: one C call, the check of Hertz's
+        # validity included (NotImplemented for anything else)
+        c = _ufuncs.contact_bodies(0, body1, body2, angle, load)
+        if c is not NotImplemented:
+            return c
         if load is None:
             raise TypeError("give exactly one of load (N), approach (m) and p0 (Pa)")
         name, value = "load", load
@@ -1261,8 +1266,11 @@ def contact(body1: Body, body2: Body, load=None, angle=0.0, *, approach=None,
             if not shape:  # numpy scalars or 0-d arrays: the scalar path
                 c = _ufuncs.contact(mode, *(float(x) for x in args))
             else:
+                _ufuncs.beyond()  # the kernel counts the contacts beyond Hertz's validity
                 c = Contact(*fused(*args), _Deferred(geometry, shape),
                             (body1.nu, body2.nu, body1.E, body2.E))
+                if not _ufuncs.beyond():
+                    return c
         else:
             # One geometry carries many loads: solve each geometry once and
             # broadcast its fields (read-only views) over the loads.
@@ -1415,3 +1423,7 @@ def _dask_line(args, nu):
     """A LineContact of dask arrays."""
     names = tuple(k for k in _GEOMETRY_NAMES if k != "angle") + ("load_per_length",)
     return LineContact(*_interop.dask_map(_ufuncs.line, args, nout=5, names=names), nu)
+
+
+# the scalar path reads Body's slots in C and warns through _check_size
+_ufuncs.register_validity(Body, _INVERSE_LIMIT, _check_size)

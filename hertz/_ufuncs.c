@@ -501,11 +501,40 @@ partial_slip_block(ptrdiff_t n, const double *const *in, double *const *out, int
 
 /* ------------------------------------------------------ the ufunc loops */
 
+/* Hertz's validity check (hertz.A_OVER_R_LIMIT): a contact whose semi-major axis a
+ * exceeds the limit times the smallest |radius| of the two bodies, tested as Python
+ * tests it (|R| < a * inverse_limit for any radius, so the same bits).  The batch loops
+ * of the contact count such contacts in `beyond_count`, per thread (numpy runs a ufunc
+ * in the calling thread, which reads the count right after the call): the check costs a
+ * pass over each block while it is in the cache instead of a pass over the arrays. */
+#if defined(_MSC_VER)
+#define HERTZ_THREAD_LOCAL __declspec(thread)
+#else
+#define HERTZ_THREAD_LOCAL _Thread_local
+#endif
+static HERTZ_THREAD_LOCAL Py_ssize_t beyond_count = 0;
+static double inverse_limit = 0.0; /* 0 until hertz._contact registers it: no check */
+static PyObject *warn_size = NULL; /* hertz._contact._check_size */
+
+static Py_ssize_t
+count_beyond(ptrdiff_t n, const double *const in[], const double *a)
+{
+    const double inv = inverse_limit;
+    Py_ssize_t count = 0;
+    for (ptrdiff_t i = 0; i < n; ++i) {
+        double t = a[i] * inv;
+        count += (fabs(in[0][i]) < t) | (fabs(in[1][i]) < t) | (fabs(in[2][i]) < t)
+                 | (fabs(in[3][i]) < t);
+    }
+    return count;
+}
+
 /* Run `fn` over a strided ufunc call in blocks: contiguous operands are used
- * in place, the others copied through block buffers. */
+ * in place, the others copied through block buffers.  check: count the contacts
+ * beyond Hertz's validity (inputs 0-3 the radii, output HERTZ_OUT_A the semi-axis a). */
 static int
 drive(char *const data[], npy_intp const dims[], npy_intp const steps[], int nin, int nout,
-      block_fn fn, int variant, int any_length)
+      block_fn fn, int variant, int any_length, int check)
 {
     double buf[MAXARGS][HERTZ_BLOCK];
     const double *in[MAXARGS];
@@ -558,6 +587,9 @@ drive(char *const data[], npy_intp const dims[], npy_intp const steps[], int nin
         if (fn(n, in, out, variant) < 0) {
             return -1;
         }
+        if (check && inverse_limit > 0.0) {
+            beyond_count += count_beyond(n, in, out[HERTZ_OUT_A]);
+        }
         for (int k = 0; k < nout; ++k) {
             int j = nin + k;
             if (steps[j] != sizeof(double)) {
@@ -572,25 +604,25 @@ drive(char *const data[], npy_intp const dims[], npy_intp const steps[], int nin
 }
 
 /* ANY: the block function takes any length (the ellipse solver does). */
-#define LOOP_ANY(NAME, NIN, NOUT, FN, VARIANT, ANY)                                          \
+#define LOOP_ANY(NAME, NIN, NOUT, FN, VARIANT, ANY, CHECK)                                   \
     static int NAME(PyArrayMethod_Context *context, char *const data[],                    \
                     npy_intp const dims[], npy_intp const steps[], NpyAuxData *aux)        \
     {                                                                                      \
         (void)context;                                                                     \
         (void)aux;                                                                         \
-        return drive(data, dims, steps, NIN, NOUT, FN, VARIANT, ANY);                      \
+        return drive(data, dims, steps, NIN, NOUT, FN, VARIANT, ANY, CHECK);               \
     }
-#define LOOP(NAME, NIN, NOUT, FN, VARIANT) LOOP_ANY(NAME, NIN, NOUT, FN, VARIANT, 0)
+#define LOOP(NAME, NIN, NOUT, FN, VARIANT) LOOP_ANY(NAME, NIN, NOUT, FN, VARIANT, 0, 0)
 
-LOOP_ANY(ellipticity0_loop, 1, 1, ellipticity_block, 0, 1)
-LOOP_ANY(ellipticity1_loop, 1, 1, ellipticity_block, 1, 1)
-LOOP_ANY(ellipticity2_loop, 1, 1, ellipticity_block, 2, 1)
-LOOP_ANY(ellipticity3_loop, 1, 1, ellipticity_block, 3, 1)
-LOOP_ANY(ellipse0_loop, 1, 4, ellipse_block, 0, 1)
-LOOP_ANY(ellipse1_loop, 1, 4, ellipse_block, 1, 1)
-LOOP(contact_load_loop, 10, HERTZ_NGIVEN, contact_block, HERTZ_GIVEN_LOAD)
-LOOP(contact_approach_loop, 10, HERTZ_NGIVEN, contact_block, HERTZ_GIVEN_APPROACH)
-LOOP(contact_p0_loop, 10, HERTZ_NGIVEN, contact_block, HERTZ_GIVEN_P0)
+LOOP_ANY(ellipticity0_loop, 1, 1, ellipticity_block, 0, 1, 0)
+LOOP_ANY(ellipticity1_loop, 1, 1, ellipticity_block, 1, 1, 0)
+LOOP_ANY(ellipticity2_loop, 1, 1, ellipticity_block, 2, 1, 0)
+LOOP_ANY(ellipticity3_loop, 1, 1, ellipticity_block, 3, 1, 0)
+LOOP_ANY(ellipse0_loop, 1, 4, ellipse_block, 0, 1, 0)
+LOOP_ANY(ellipse1_loop, 1, 4, ellipse_block, 1, 1, 0)
+LOOP_ANY(contact_load_loop, 10, HERTZ_NGIVEN, contact_block, HERTZ_GIVEN_LOAD, 0, 1)
+LOOP_ANY(contact_approach_loop, 10, HERTZ_NGIVEN, contact_block, HERTZ_GIVEN_APPROACH, 0, 1)
+LOOP_ANY(contact_p0_loop, 10, HERTZ_NGIVEN, contact_block, HERTZ_GIVEN_P0, 0, 1)
 LOOP(geometry_loop, 9, HERTZ_NFIELDS, geometry_block, 0)
 LOOP(coefficients_loop, 9, GEOMETRY_NOUT, geometry_block, 1)
 LOOP(given_load_loop, 10, 6, given_block, HERTZ_GIVEN_LOAD)
@@ -803,6 +835,139 @@ contact_scalar(PyObject *self, PyObject *const *args, Py_ssize_t nargs)
     return contact_type ? new_contact(fields, moduli) : tuple_of(fields, HERTZ_NOUT);
 }
 
+/* hertz.Body (a slotted frozen dataclass) and the offsets of its slots Rx, Ry, E, nu
+ * and _scalar, for contact_bodies. */
+static PyTypeObject *body_type = NULL;
+static Py_ssize_t body_offsets[5];
+
+static int
+slot_offsets(PyObject *cls, const char *const names[], int count, Py_ssize_t offsets[],
+             const char *who)
+{
+    for (int k = 0; k < count; ++k) {
+        PyObject *d = PyDict_GetItemString(((PyTypeObject *)cls)->tp_dict, names[k]);
+        if (d == NULL || !PyObject_TypeCheck(d, &PyMemberDescr_Type)
+            || ((PyMemberDescrObject *)d)->d_member->type != T_OBJECT_EX) {
+            PyErr_Format(PyExc_TypeError, "%s: no slot %s", who, names[k]);
+            return -1;
+        }
+        offsets[k] = ((PyMemberDescrObject *)d)->d_member->offset;
+    }
+    return 0;
+}
+
+PyDoc_STRVAR(register_validity_doc,
+"register_validity(body_cls, inverse_limit, check_size)\n\n"
+"The body class (slots Rx, Ry, E, nu, _scalar) that contact_bodies reads, the\n"
+"validity test |R| < a * inverse_limit, and the function called as\n"
+"check_size(a, body1, body2) where a contact fails it (it warns).  Private:\n"
+"hertz._contact calls it once.");
+
+static PyObject *
+register_validity(PyObject *self, PyObject *args)
+{
+    (void)self;
+    static const char *const names[5] = {"Rx", "Ry", "E", "nu", "_scalar"};
+    PyObject *cls, *check;
+    double inv;
+    if (!PyArg_ParseTuple(args, "O!dO", &PyType_Type, &cls, &inv, &check)) {
+        return NULL;
+    }
+    if (!(inv > 0.0) || !PyCallable_Check(check)) {
+        PyErr_SetString(PyExc_ValueError, "register_validity: inverse_limit > 0 and a "
+                                          "callable are required");
+        return NULL;
+    }
+    if (slot_offsets(cls, names, 5, body_offsets, "register_validity") < 0) {
+        return NULL;
+    }
+    Py_XSETREF(body_type, (PyTypeObject *)Py_NewRef(cls));
+    Py_XSETREF(warn_size, Py_NewRef(check));
+    inverse_limit = inv;
+    Py_RETURN_NONE;
+}
+
+PyDoc_STRVAR(beyond_doc,
+"beyond() -> int\n\n"
+"How many contacts the batch loops of this thread found beyond Hertz's validity\n"
+"since the last call (and reset the count).  Private: hertz.contact calls it.");
+
+static PyObject *
+beyond(PyObject *self, PyObject *unused)
+{
+    (void)self;
+    (void)unused;
+    Py_ssize_t count = beyond_count;
+    beyond_count = 0;
+    return PyLong_FromSsize_t(count);
+}
+
+PyDoc_STRVAR(contact_bodies_doc,
+"contact_bodies(mode, body1, body2, angle, value) -> Contact or NotImplemented\n\n"
+"hertz.contact's scalar path in one call: two registered bodies of Python floats,\n"
+"a float angle and value (mode 0, 1, 2: the load, approach or p0); the validity\n"
+"check made and check_size called where it fails.  NotImplemented for any other\n"
+"input (the caller takes its general path).  Private: use hertz.contact.");
+
+static PyObject *
+contact_bodies(PyObject *self, PyObject *const *args, Py_ssize_t nargs)
+{
+    (void)self;
+    if (nargs != 5 || body_type == NULL || contact_type == NULL
+        || Py_TYPE(args[1]) != body_type || Py_TYPE(args[2]) != body_type
+        || !PyFloat_CheckExact(args[3]) || !PyFloat_CheckExact(args[4])
+        || !PyLong_CheckExact(args[0])) {
+        Py_RETURN_NOTIMPLEMENTED;
+    }
+    double x[HERTZ_NGEOMETRY + 1];
+    static const int where[2][4] = {{HERTZ_R1X, HERTZ_R1Y, HERTZ_E1, HERTZ_NU1},
+                                    {HERTZ_R2X, HERTZ_R2Y, HERTZ_E2, HERTZ_NU2}};
+    for (int j = 0; j < 2; ++j) {
+        char *body = (char *)args[1 + j];
+        if (*(PyObject **)(body + body_offsets[4]) != Py_True) {
+            Py_RETURN_NOTIMPLEMENTED; /* array fields: the general path */
+        }
+        for (int k = 0; k < 4; ++k) {
+            PyObject *f = *(PyObject **)(body + body_offsets[k]);
+            if (f == NULL || !PyFloat_CheckExact(f)) {
+                Py_RETURN_NOTIMPLEMENTED;
+            }
+            x[where[j][k]] = PyFloat_AS_DOUBLE(f);
+        }
+    }
+    x[HERTZ_ANGLE] = PyFloat_AS_DOUBLE(args[3]);
+    x[HERTZ_NGEOMETRY] = PyFloat_AS_DOUBLE(args[4]);
+    long mode = PyLong_AsLong(args[0]);
+    if (!(mode >= 0 && mode < HERTZ_NMODES)) {
+        PyErr_SetString(PyExc_ValueError, "contact_bodies: mode must be 0, 1 or 2");
+        return NULL;
+    }
+    double fields[HERTZ_NOUT];
+    hertz_scaled rho_x = {0.0, 0.0}, rho_y = {0.0, 0.0};
+    int code = contact_one(x, (int)mode, 1, fields, &rho_x, &rho_y);
+    if (code != HERTZ_OK) {
+        set_error(code, x, x[HERTZ_NGEOMETRY], (int)mode, rho_x, rho_y);
+        return NULL;
+    }
+    double moduli[4] = {x[HERTZ_NU1], x[HERTZ_NU2], x[HERTZ_E1], x[HERTZ_E2]};
+    PyObject *c = new_contact(fields, moduli);
+    double t = fields[HERTZ_OUT_A] * inverse_limit;
+    if (c != NULL && inverse_limit > 0.0
+        && (fabs(x[HERTZ_R1X]) < t || fabs(x[HERTZ_R1Y]) < t || fabs(x[HERTZ_R2X]) < t
+            || fabs(x[HERTZ_R2Y]) < t)) {
+        PyObject *a = PyFloat_FromDouble(fields[HERTZ_OUT_A]);
+        PyObject *r = a ? PyObject_CallFunctionObjArgs(warn_size, a, args[1], args[2], NULL)
+                        : NULL;
+        Py_XDECREF(a);
+        if (r == NULL) {
+            Py_DECREF(c);
+            return NULL;
+        }
+        Py_DECREF(r);
+    }
+    return c;
+}
+
 PyDoc_STRVAR(line_scalar_doc,
 "line_contact(r1x, r1y, r2x, r2y, E1, nu1, E2, nu2, load_per_length) -> tuple\n\n"
 "One line contact from Python floats: (half_width, p0, e_star, rho, load).\n"
@@ -1008,6 +1173,10 @@ static PyMethodDef methods[] = {
     {"contact", (PyCFunction)(void (*)(void))contact_scalar, METH_FASTCALL, contact_scalar_doc},
     {"line_contact", (PyCFunction)(void (*)(void))line_scalar, METH_FASTCALL, line_scalar_doc},
     {"register_contact_type", register_contact_type, METH_O, register_doc},
+    {"register_validity", register_validity, METH_VARARGS, register_validity_doc},
+    {"contact_bodies", (PyCFunction)(void (*)(void))contact_bodies, METH_FASTCALL,
+     contact_bodies_doc},
+    {"beyond", beyond, METH_NOARGS, beyond_doc},
     {"simd", simd, METH_VARARGS, simd_doc},
     {"path", path, METH_VARARGS, path_doc},
     {"build_info", build_info, METH_NOARGS, build_info_doc},
