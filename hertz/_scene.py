@@ -3,7 +3,8 @@
 A scene file describes two bodies pressed together, in SI units::
 
     name = "bearing ball on inner race"
-    load = 1500.0          # N (or: approach = ..., in m)
+    load = 1500.0          # N (or: approach = ..., in m; or, for a line contact of
+                           # parallel cylinders: load_per_length = ..., in N/m)
     angle_deg = 0.0        # degrees between the bodies' x axes
 
     [body1]
@@ -40,6 +41,8 @@ SCENE_KEYS = (
     ("name", "", "label printed with the results (default: the file's path)"),
     ("load", "N", "normal force, >= 0 (0: no contact patch, no stresses)"),
     ("approach", "m", "instead of load: the approach of the bodies (the load is computed)"),
+    ("load_per_length", "N/m", "instead of load: a line contact (two parallel cylinders, "
+     "Rx = R, Ry = inf, or a cylinder on a plane), normal force per unit length, >= 0"),
     ("angle_deg", "deg", "angle between the bodies' x axes"),
     ("tangential", "N", "tangential force, <= mu * load, along direction_deg"),
     ("mu", "-", "coefficient of friction, > 0 (tangential and mu: both or neither)"),
@@ -111,7 +114,8 @@ def read_scene(path, *, keys=None, complete: bool = False) -> dict:
     dict
         In the file's order: ``name`` (str), the numbers (float; a string that spells
         one, such as ``"inf"``, is read as it), ``body1`` and ``body2``
-        (dicts of floats).  At most one of ``load`` and ``approach``.
+        (dicts of floats).  At most one of ``load``, ``approach`` and
+        ``load_per_length`` (a line contact: the bodies are parallel cylinders or planes).
 
     Raises
     ------
@@ -119,7 +123,8 @@ def read_scene(path, *, keys=None, complete: bool = False) -> dict:
         One line naming the file and, where one is at fault, the key: a file that
         cannot be read or is over 1 MiB, invalid TOML (or not UTF-8), nesting too deep,
         an unknown or (``complete``) missing key, a value that is not a number (or a
-        string for ``name``), both ``load`` and ``approach``.
+        string for ``name``), more than one of ``load``, ``approach`` and
+        ``load_per_length``.
     """
     source = os.fspath(path)
     where = f"scene file {source!r}"
@@ -184,9 +189,15 @@ def parse_scene(text: str, source: str, *, keys=None, complete: bool = False) ->
         for key in BODIES:
             if key not in scene:
                 raise SceneError(source, f"the [{key}] table is missing")
-    if "load" in scene and "approach" in scene:
+    targets = [key for key in ("load", "approach", "load_per_length") if key in scene]
+    if targets == ["load", "approach"]:
         raise SceneError(source, "give one of load and approach, not both (a scene has at "
                                  "most one target: load [N] or approach [m])")
+    if len(targets) > 1:
+        raise SceneError(source, f"give one of load, approach and load_per_length, not "
+                                 f"{' and '.join(targets)} (a scene has at most one target: "
+                                 f"load [N], approach [m] or, for a line contact, "
+                                 f"load_per_length [N/m])")
     return scene
 
 

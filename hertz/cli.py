@@ -271,7 +271,7 @@ def _read_scene(path: str) -> dict:
             merged[key].update(value)
         else:
             merged[key] = value
-    if "approach" in given:
+    if "approach" in given or "load_per_length" in given:
         merged.pop("load")
     return merged
 
@@ -297,9 +297,11 @@ def _scene(args) -> dict:
     if args.load is not None:
         scene["load"] = args.load
         scene.pop("approach", None)
+        scene.pop("load_per_length", None)
     if args.approach is not None:
         scene["approach"] = args.approach
         scene.pop("load", None)
+        scene.pop("load_per_length", None)
     if args.angle_deg is not None:
         scene["angle_deg"] = args.angle_deg
     for key in (*_TANGENTIAL_KEYS, "direction_deg"):
@@ -720,6 +722,8 @@ def _run(argv) -> int:
     if args.plot is not None:
         _plot_format(args.plot)  # a bad name fails before any work
     scene = _scene(args)
+    if "load_per_length" in scene:
+        return _run_line(args, scene)
     # Overflow and underflow are reported as such (overflow, null); a NaN is an error
     # (_finite): numpy's floating-point warnings would only repeat them on stderr.
     with np.errstate(all="ignore"):
@@ -741,6 +745,76 @@ def _run(argv) -> int:
         text = "\n".join([_table(scene, body1, body2, fields),
                           *([] if tangential is None else _tangential_table(tangential)),
                           *_stress_table(stresses, args.yield_strength, not c.a > 0)])
+    _write(text)
+    _warn(notes)
+    return 0
+
+
+# --- a line contact (scene key load_per_length) ---------------------------------------------
+
+_LINE_FIELDS = ("half_width", "p0", "p_mean", "load_per_length", "e_star", "rho_sum")
+_LINE_MAXIMA = ("tau_max", "z_tau_max", "von_mises", "z_von_mises")
+
+
+def _run_line(args, scene) -> int:
+    """A scene with ``load_per_length``: the :class:`hertz.LineContact` of its bodies (two
+    parallel cylinders, Rx = R and Ry = inf, or a cylinder on a plane), as a table or JSON,
+    with the largest subsurface stresses of each body (plane strain)."""
+    from ._contact import line_contact
+
+    extra = [opt for opt, given in (("--print-scene", args.print_scene),
+                                    ("--plot", args.plot),
+                                    ("--yield-strength", args.yield_strength),
+                                    ("--angle-deg", scene.get("angle_deg") or None),
+                                    ("--tangential", scene.get("tangential")))
+             if given is not None]
+    if extra:
+        raise _UsageError(f"a line contact (scene key load_per_length) takes none of "
+                          f"{', '.join(extra)} (parallel cylinders, normal load only)")
+    body1, body2 = _body(scene["body1"], "body1"), _body(scene["body2"], "body2")
+    with warnings.catch_warnings(record=True) as caught, np.errstate(all="ignore"):
+        warnings.simplefilter("always", HertzValidityWarning)
+        try:
+            lc = line_contact(body1, body2, scene["load_per_length"])
+        except TypeError as exc:
+            raise _UsageError(str(exc)) from None
+        fields = {k: _finite(getattr(lc, k), k) for k in _LINE_FIELDS}
+        stresses = {}
+        for body in (1, 2):
+            if lc.half_width > 0:
+                m = lc.subsurface(body)
+                stresses[f"body{body}"] = {k: _finite(getattr(m, k), f"body {body}'s {k}")
+                                           for k in _LINE_MAXIMA}
+            else:
+                stresses[f"body{body}"] = {"tau_max": 0.0, "z_tau_max": None,
+                                           "von_mises": 0.0, "z_von_mises": None}
+    notes = [str(w.message) for w in caught if issubclass(w.category, HertzValidityWarning)]
+    if args.json:
+        text = json.dumps({"scene": scene["name"], "kind": "line", **fields,
+                           "stresses": stresses, "warnings": notes}, indent=2,
+                          allow_nan=False)
+    else:
+        lines = [f"Hertz line contact: {_printable(scene['name'])}"]
+        for i, b in ((1, body1), (2, body2)):
+            lines.append(f"  body {i}: Rx = {_radius_text(b.Rx)}, Ry = {_radius_text(b.Ry)}, "
+                         f"E = {_si(b.E, 'Pa')}, nu = {b.nu:g}")
+        rows = [("load per length P'", _si(fields["load_per_length"], "N/m")),
+                ("half-width b", _si(fields["half_width"], "m")),
+                ("peak pressure p0", _si(fields["p0"], "Pa")),
+                ("mean pressure", _si(fields["p_mean"], "Pa")),
+                ("E* (reduced modulus)", _si(fields["e_star"], "Pa")),
+                ("relative curvature", _g(fields["rho_sum"], " 1/m"))]
+        width = max(len(name) for name, _ in rows)
+        lines += [f"  {name:<{width}}  {value}" for name, value in rows]
+        lines.append("  stresses below the contact (plane strain, frictionless):")
+        for body in (1, 2):
+            row = stresses[f"body{body}"]
+            lines.append(f"    body {body}: tau_max {_si(row['tau_max'], 'Pa')} at "
+                         f"{_si(row['z_tau_max'], 'm')}, von Mises "
+                         f"{_si(row['von_mises'], 'Pa')} at {_si(row['z_von_mises'], 'm')}")
+        lines.append("  (the approach of a line contact depends on the bodies' sizes: "
+                     "not given)")
+        text = "\n".join(lines)
     _write(text)
     _warn(notes)
     return 0

@@ -52,11 +52,17 @@ def _level(value: int) -> int:
 
 def _deck(argv: list[str]) -> int:
     """``python -m fem_validation deck ...``: a benchmark deck for another code."""
+    if any(a == "--code" or a.startswith("--code=") for a in argv):  # a DEM code's input
+        from .lammps import main as dem_deck
+
+        return dem_deck(argv)
     p = OneLineParser(prog="python -m fem_validation deck",
                       description="Write a Hertz benchmark as input for another "
                                   "finite-element code (fem_validation.decks).",
                       epilog="example: python -m fem_validation deck --scene FILE.toml "
-                             "--format calculix --out DIR")
+                             "--format calculix --out DIR\n"
+                             "a DEM code's input (LAMMPS): python -m fem_validation deck "
+                             "--code lammps --help")
     add_arguments(p)
     args = p.parse_args(argv)
     return run(args, command=" ".join(["python -m fem_validation deck", *argv]))
@@ -78,10 +84,12 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
                         help=f"mesh level, 0 coarse: 0-4 for a true ball on a plane or in a "
                              f"groove, 0-5 for paraboloid-faced blocks (default "
                              f"{DEFAULT_DECK_LEVEL})")
-    parser.add_argument("--model", choices=("auto", "quarter", "half", "whole"),
+    parser.add_argument("--model", choices=("auto", "quarter", "half", "whole",
+                                             "plane-strain", "axisymmetric"),
                         default="auto",
                         help="quarter, half (y >= 0) or whole model (default: quarter where "
-                             "the scene allows; half with --friction)")
+                             "the scene allows; half with --friction); plane-strain or "
+                             "axisymmetric: a 2-D deck (fem_validation.decks.plane)")
     parser.add_argument("--slave", type=int, choices=(1, 2), default=1,
                         help="body whose contact face is the slave surface (default 1)")
     low, high = PENALTY_FACTOR_RANGE
@@ -122,6 +130,17 @@ def run(args: argparse.Namespace, command: str | None = None) -> int:
     options' model and format) and ``--out`` is checked (new or empty, unless
     ``--overwrite``), in that order, before anything is meshed or written.
     """
+    if args.model in ("plane-strain", "axisymmetric"):  # a 2-D deck: decks/plane.py
+        from ..decks.plane import plane_deck
+
+        require(("gmsh",), f"deck --model {args.model}")
+        if args.deck_format not in ("calculix", "abaqus") or args.friction is not None:
+            raise ValueError(f"--model {args.model} writes a frictionless CalculiX or Abaqus "
+                             f"deck (--format calculix or abaqus, no --friction)")
+        out_dir(args.out, args.overwrite)
+        print(plane_deck(args.scene, args.model, args.deck_format, args.out, args.units,
+                         args.level, args.penalty_factor, command))
+        return 0
     scene = read_scene(args.scene)
     if args.friction is None and (args.friction_ratio != 0.8 or
                                   args.friction_increments != DEFAULT_FRICTION_INCREMENTS):
