@@ -323,6 +323,8 @@ def test_malformed_trajectory(tmp_path, scene, capsys, name, text, words):
     (["--angle-deg", "95", "--mu", "0.1"], ["--angle-deg"]),
     (["--tolerance", "nonsense=1"], ["unknown metric"]),
     (["--damping-attractive"], ["--damping"]),
+    (["--damping", "lammps_tsuji:1.5"], ["lammps_tsuji", "(0, 1]", "1.5"]),
+    (["--damping", "tsuij:0.5"], ["unknown law", "'tsuij'", "lammps_tsuji_sqrt2"]),
 ])
 def test_bad_options(tmp_path, scene, record, capsys, argv, words):
     t, d, f, *_ = record
@@ -523,3 +525,130 @@ def test_unit_hint(record):
     assert not g.passed
     assert "mm" in g.hint and "1e+3" in g.hint
     assert g.summary.startswith("FAILED") and g.hint in g.summary
+
+
+# --- LAMMPS's damping keywords, and a damping that pulls (found running LAMMPS) ----------
+
+#: Tsuji's alpha(e) as LAMMPS's src/GRANULAR/gran_sub_mod_damping.cpp writes it (Marshall
+#: 2009, eq. 53), copied here from LAMMPS, not from the grader.
+LAMMPS_POLY = (1.2728, -4.2783, 11.087, -22.348, 27.467, -18.022, 4.8218)
+
+
+def lammps_tsuji(e, factor=1.0, limit=False, k=K, mass=M, speed=V):
+    """(restitution, duration) of LAMMPS's ``damping tsuji e`` integrated here by DOP853
+    at rtol 1e-12 in its own dimensional form: F = F_n + alpha sqrt(m_eff F_n / delta)
+    delta', F_n = K delta^1.5, alpha = factor poly(e); ``limit``: ``limit_damping`` (F
+    cut off at 0: the bodies part where it reaches 0), else until the overlap is 0."""
+    from scipy.integrate import solve_ivp
+
+    alpha = factor * sum(c * e ** i for i, c in enumerate(LAMMPS_POLY))
+
+    def total(d, v):
+        if d <= 0:
+            return 0.0
+        fn = k * d ** 1.5
+        return fn + alpha * math.sqrt(mass * fn / d) * v
+
+    def rhs(_, y):
+        f = total(y[0], y[1])
+        return [y[1], -(max(f, 0.0) if limit else f) / mass]
+
+    def ends(_, y):
+        if y[1] >= 0:
+            return 1.0
+        return total(y[0], y[1]) if limit else y[0]
+
+    ends.terminal, ends.direction = True, -1
+    tc = 3 * (5 * mass * speed ** 2 / (4 * k)) ** 0.4 / speed
+    s = solve_ivp(rhs, (0, 3 * tc), [0.0, speed], method="DOP853", rtol=1e-12, atol=1e-20,
+                  events=ends)
+    return -float(s.y_events[0][0][1]) / speed, float(s.t_events[0][0])
+
+
+@pytest.mark.parametrize("law, factor", [("lammps_tsuji", 1.0),
+                                         ("lammps_tsuji_sqrt2", math.sqrt(2.0))])
+@pytest.mark.parametrize("cutoff", [True, False])
+def test_lammps_tsuji_against_lammps_own_force_law(scene, law, factor, cutoff):
+    """--damping lammps_tsuji:E is LAMMPS's (22 Jul 2025) damping tsuji E, alpha = poly(E);
+    lammps_tsuji_sqrt2:E the development sources' sqrt(2) poly(E): restitution and
+    duration against LAMMPS's force law integrated here (observed: 1.35e-11, 4.5e-12)."""
+    import hertz
+
+    if not hasattr(hertz, "damped_impact"):
+        pytest.skip("this hertz has no damped impact yet")
+    e, tc = lammps_tsuji(0.8, factor, limit=cutoff)
+    ref = impact_reference(scene_from_toml(scene), M, V, damping=f"{law}:0.8", cutoff=cutoff)
+    assert ref.restitution - e == pytest.approx(0, abs=2e-11)
+    assert ref.duration / tc - 1 == pytest.approx(0, abs=7e-12)
+    assert ref.attractive is (not cutoff)
+    if law == "lammps_tsuji" and not cutoff:
+        # lmp 22 Jul 2025 (update 4), damping tsuji 0.8 without limit_damping, two
+        # aluminium spheres at 1 m/s, t_c / 2000 steps: free-flight e = 0.85338384
+        assert e == pytest.approx(0.85338384, abs=2e-6)
+
+
+def pulling_record(alpha=0.5, steps=400, before=10, after=10):
+    """Tsuji's law not cut off, integrated by DOP853 (rtol 1e-12): rows every t_c / steps,
+    one of them exactly where the force changes sign on the way out, the force written in
+    fixed point (six decimals), as a code printing ``%f`` does, so that it reads 0 there.
+    Returns the columns, the time of the force's zero, the overlap's zero (the contact's
+    end), the speed out and the step."""
+    from scipy.integrate import solve_ivp
+
+    def force(d, v):
+        return K * d ** 1.5 + alpha * math.sqrt(K * M) * d ** 0.25 * v if d > 0 else 0.0
+
+    def rhs(_, y):
+        return [y[1], -force(y[0], y[1]) / M]
+
+    def pulls(_, y):
+        return force(y[0], y[1]) if y[1] < 0 else 1.0
+
+    def parted(_, y):
+        return y[0] if y[1] < 0 else 1.0
+
+    pulls.direction = -1
+    parted.terminal, parted.direction = True, -1
+    sol = solve_ivp(rhs, (0, 3 * TC), [0.0, V], method="DOP853", rtol=1e-12, atol=1e-20,
+                    dense_output=True, events=[pulls, parted])
+    t_zero, t_end = float(sol.t_events[0][0]), float(sol.t_events[1][0])
+    v_out = float(sol.y_events[1][0][1])
+    dt = TC / steps
+    t = t_zero + dt * np.arange(-int(t_zero / dt) - before, int((t_end - t_zero) / dt)
+                                + after + 1)
+    d = np.array([V * x if x < 0 else v_out * (x - t_end) if x > t_end else sol.sol(x)[0]
+                  for x in t])
+    v = np.array([V if x < 0 else v_out if x > t_end else sol.sol(x)[1] for x in t])
+    f = np.array([float(f"{force(a, b):.6f}") for a, b in zip(d, v, strict=True)])
+    return {"t": t, "overlap": d, "normal_force": f}, t_zero, t_end, v_out, dt
+
+
+def test_attractive_contact_ends_where_the_overlap_returns_to_zero(tmp_path, scene):
+    """With --damping-attractive the contact lasts until the overlap is back at 0 (not to
+    the force's first zero, here a row written as 0) and the restitution is the speed of
+    the free flight after it: against the integration's own end and speed."""
+    import hertz
+
+    if not hasattr(hertz, "damped_impact"):
+        pytest.skip("this hertz has no damped impact yet")
+    columns, t_zero, t_end, v_out, dt = pulling_record()
+    t, f = columns["t"], columns["normal_force"]
+    k = int(np.argmin(np.abs(t - t_zero)))
+    assert f[k] == 0 and f[k + 1] < 0             # the row at the sign change reads 0
+    csv = write(tmp_path / "pull.csv", columns)
+    assert cli(tmp_path, scene, csv, "--damping", "tsuji:0.5", "--damping-attractive") == 0
+    g = json.loads((tmp_path / "out" / "grade.json").read_text())
+    m = g["measured"]
+    assert m["attractive"] and m["end_method"] == "the overlap's zero, interpolated"
+    assert (m["t_end"] - t_end) / dt == pytest.approx(0, abs=5e-6)   # observed 3.2e-6
+    assert m["restitution"] == pytest.approx(-v_out / V, abs=1e-9)    # free flight: exact
+    # the contact measured as a cut-off one ends at that row, and fails
+    assert cli(tmp_path, scene, csv, "--damping", "tsuji:0.5") == 1
+    g = json.loads((tmp_path / "out" / "grade.json").read_text())
+    assert g["measured"]["t_end"] < t_zero + dt and not g["measured"]["attractive"]
+    # from Python the measure follows the reference (cutoff=False: attractive)
+    ref = impact_reference(scene_from_toml(scene), M, V, damping="tsuji:0.5", cutoff=False)
+    r = ImpactTrajectory(t, columns["overlap"], f)
+    assert grade_impact(r, ref, mass=M, speed=V).passed
+    forced = grade_impact(r, ref, mass=M, speed=V, attractive=False)
+    assert not forced.passed and any("compare different contacts" in n for n in forced.notes)

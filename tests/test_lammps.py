@@ -217,6 +217,34 @@ def test_damped_impacts_are_graded_against_their_own_law(tmp_path, scenes, dampi
 
 
 @needs_lmp
+@pytest.mark.parametrize("law, graded, other", [
+    ("tsuji", "lammps_tsuji:0.8", "lammps_tsuji_sqrt2:0.8"),
+    ("coeff_restitution", "coeff_restitution:0.8", None)])
+def test_attractive_damping_graded_to_the_overlaps_zero(tmp_path, scenes, law, graded, other):
+    """No limit_damping: the damping pulls at the end; graded with --damping-attractive the
+    contact lasts until the overlap is back at 0 and passes.  LAMMPS's (22 Jul 2025)
+    ``damping tsuji 0.8`` is lammps_tsuji:0.8 (alpha = poly(e)), not the development
+    sources' sqrt(2) poly(e), which fails."""
+    import subprocess
+
+    from fem_validation.decks.lammps import write_lammps_deck
+
+    d = lammps_deck(scene_from_toml(scenes["spheres"]), "impact", speed=1.0, damping=law,
+                    damping_value=0.8, attractive=True)
+    run = write_lammps_deck(d, tmp_path / "run").parent
+    subprocess.run([shutil.which("lmp"), "-in", "in.lammps", "-log", "none", "-screen",
+                    "none"], cwd=run, check=True, timeout=60)
+    _, _, fn, *_ = np.loadtxt(run / "trajectory.csv", delimiter=",", skiprows=1).T
+    assert fn.min() < 0                                        # it pulls
+    base = ["--impact", str(run / "trajectory.csv"), "--scene", str(scenes["spheres"]),
+            "--mass", repr(d.values["mass"]), "--speed", "1", "--damping-attractive"]
+    status, g = grade([*base, "--damping", graded], tmp_path / "g")
+    assert status == 0 and g["measured"]["end_method"] == "the overlap's zero, interpolated"
+    if other is not None:
+        assert grade([*base, "--damping", other], tmp_path / "g2")[0] == 1
+
+
+@needs_lmp
 def test_oblique_impact_in_gross_slip_on_a_wall(tmp_path, scenes):
     mu, angle = mp.mpf("0.1"), 60
     run = deck(tmp_path, scenes["wall"], "impact", "--speed", "1", "--angle-deg", str(angle),

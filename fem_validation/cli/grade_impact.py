@@ -42,11 +42,18 @@ def add_arguments(p) -> None:
     g.add_argument("--speed", type=positive, metavar="V",
                    help="normal approach speed of the bodies [m/s] (the relative one)")
     g.add_argument("--damping", metavar="LAW:VALUE",
-                   help="a damped contact: the law (velocity, mass_velocity, viscoelastic, "
-                        "kuwabara_kono, tsuji, coeff_restitution, lammps_tsuji) and its "
-                        "coefficient, graded against hertz.damped_impact (default: elastic)")
+                   help="a damped contact, graded against hertz.damped_impact (default: "
+                        "elastic): a hertz law and its coefficient (velocity, "
+                        "mass_velocity, viscoelastic, kuwabara_kono, tsuji, "
+                        "coeff_restitution), or LAMMPS's 'damping tsuji E' as "
+                        "lammps_tsuji:E (LAMMPS up to 22 Jul 2025: alpha = poly(E)) or "
+                        "lammps_tsuji_sqrt2:E (LAMMPS development since mid-2026: "
+                        "sqrt(2) poly(E))")
     g.add_argument("--damping-attractive", action="store_true",
-                   help="the damped force may pull (not cut off at 0)")
+                   help="the damped force may pull (LAMMPS without limit_damping): the "
+                        "contact ends when the overlap returns to 0; default: the force is "
+                        "cut off at 0 (limit_damping) and the contact ends where it "
+                        "reaches 0")
     g.add_argument("--angle-deg", type=finite, metavar="A",
                    help="incidence of an oblique impact from the normal [deg] (with --mu)")
 

@@ -9,16 +9,20 @@ and what it is compared with (:class:`ImpactReference`, from :func:`impact_refer
   ``F_max / M`` and the force's is ``1.5 F_max / delta_max`` times it, so the sampling
   bounds are ``b_delta = F_max dt^2 / (8 M delta_max)`` and ``b_F = 1.5 b_delta``
   (relative).
-* **duration**: the contact is where the force is positive; its start and end are placed
-  within the step where the force turns on (off), where the overlap crosses 0
-  (interpolated between the rows around the crossing where the record writes the gap,
-  else extrapolated from the two rows in contact next to it: the overlap is linear in
-  time there, the force being small), or, where the force turns off before the overlap
-  does (a damped force cut off at 0), where the force extrapolates to 0; without an
-  overlap that says, where ``F^(2/3)`` (linear in time at the ends of a Hertz contact)
-  extrapolates to 0.  The error is at most ``dt`` and, for Hertz, far smaller.
+* **duration**: the contact is where the force is positive (with ``attractive``, a
+  damping that may pull: where the overlap is positive or the force nonzero, so that it
+  lasts until the overlap returns to 0); its start and end are placed within the step
+  where the force turns on (off), where the overlap crosses 0 (interpolated between the
+  rows around the crossing where the record writes the gap, else extrapolated from the
+  two rows in contact next to it: the overlap is linear in time there, the force being
+  small), or, where the force turns off before the overlap does (a damped force cut off
+  at 0, not ``attractive``), where the force extrapolates to 0; without an overlap that
+  says, where ``F^(2/3)`` (linear in time at the ends of a Hertz contact) extrapolates to
+  0.  The error is at most ``dt`` and, for Hertz, far smaller.
 * **restitution**: ``-v_out / v_in`` of the normal velocity just before and just after
-  the contact: from the ``v_n`` column where the file has one (exact: free flight); else
+  the contact (after: from the first row of free flight, no force on it and the next; a
+  force that pulls after a contact measured as not ``attractive`` is noted): from the
+  ``v_n`` column where the file has one (exact: free flight); else
   from the overlap's slope over the two rows before the contact (after it) where the file
   writes the gap there (exact: free flight), else over the first (last) two rows in
   contact, whose error is bounded by the force there, ``|dv| <= F dt_2 / M`` over the two
@@ -56,8 +60,9 @@ from ..results.contact import ResultError
 from ..results.impact import ImpactTrajectory
 from .contact import Check, GradeMethods, nan_to_none
 
-__all__ = ["CURVE_FLOOR", "FLOOR", "METRICS", "ImpactGrade", "ImpactReference", "grade_impact",
-           "hertz_closed_form", "impact_reference", "measure"]
+__all__ = ["CURVE_FLOOR", "FLOOR", "LAMMPS_LAWS", "METRICS", "TSUJI_POLY", "ImpactGrade",
+           "ImpactReference", "grade_impact", "hertz_closed_form", "hertz_law",
+           "impact_reference", "measure"]
 
 #: The part of every tolerance that the output sampling does not explain: a DEM
 #: integrator's own error at its time step (velocity Verlet at t_c / 50 errs by about
@@ -67,6 +72,24 @@ FLOOR = 1e-3
 CURVE_FLOOR = 2e-3
 #: The fewest rows in contact a trajectory must hold to be graded.
 MIN_CONTACT_ROWS = 5
+
+#: LAMMPS's ``damping tsuji`` coefficient alpha(e) = sum TSUJI_POLY[i] e**i (Marshall 2009,
+#: eq. 53, as src/GRANULAR/gran_sub_mod_damping.cpp writes it).
+TSUJI_POLY = (1.2728, -4.2783, 11.087, -22.348, 27.467, -18.022, 4.8218)
+
+#: ``--damping`` names for LAMMPS's ``pair_style granular`` keywords whose VALUE is not the
+#: coefficient of a :mod:`hertz` law as such: name -> (LAMMPS's keyword and version, the
+#: hertz law it is graded against, how VALUE becomes that law's coefficient).  LAMMPS's
+#: ``damping tsuji E`` is F_damp = alpha sqrt(m_eff F_n / delta) delta' = alpha sqrt(m_eff K)
+#: delta^(1/4) delta' (F_n = K delta^1.5 the elastic force); alpha = poly(E) in the
+#: releases up to the 22 Jul 2025 stable one, sqrt(2) poly(E) in the development sources
+#: since mid-2026 (``damp *= MY_SQRT2``, "effective mass convention").
+LAMMPS_LAWS = {
+    "lammps_tsuji": ("damping tsuji E, LAMMPS up to 22 Jul 2025 (stable): alpha = poly(E)",
+                     "tsuji", "poly(E)"),
+    "lammps_tsuji_sqrt2": ("damping tsuji E, LAMMPS development since mid-2026: alpha = "
+                           "sqrt(2) poly(E)", "lammps_tsuji", "E"),
+}
 
 #: metric -> (short name, what it measures)
 METRICS = {
@@ -122,6 +145,10 @@ class ImpactReference:
         ``tangential_restitution``, ``rebound_angle_deg`` (the contact point's) and
         ``spin`` [rad/s] after the impact, and ``v_t_before`` [m/s], where the reference
         has them.
+    attractive : bool
+        The reference's force may pull (a damping not cut off at 0): its contact ends
+        when the overlap returns to 0, and :func:`grade_impact` measures the record's so
+        (False: it ends where the force reaches 0).
     """
 
     max_approach: float
@@ -133,6 +160,7 @@ class ImpactReference:
     force_of_overlap: Callable | None = None
     oblique: dict | None = None
     stiffness: float = math.nan
+    attractive: bool = False
 
     def replace(self, **changes) -> ImpactReference:
         """A copy with ``changes``."""
@@ -219,6 +247,58 @@ def _damping(damping):
     return str(law), float(coefficient)
 
 
+def hertz_law(law: str, value: float) -> tuple[str, float, str]:
+    """The :mod:`hertz` damping law and coefficient a ``--damping LAW:VALUE`` is graded
+    against.
+
+    Parameters
+    ----------
+    law : str
+        A law of ``hertz.DAMPING_LAWS`` (its coefficient as such), or one of
+        :data:`LAMMPS_LAWS` (LAMMPS's ``damping tsuji`` restitution, by release).
+    value : float
+        The law's coefficient, or for a :data:`LAMMPS_LAWS` name the restitution E given
+        to LAMMPS, in (0, 1].
+
+    Returns
+    -------
+    (str, float, str)
+        The hertz law, its coefficient and a description for the report.
+
+    Raises
+    ------
+    ValueError
+        A LAMMPS restitution outside (0, 1]; a law neither hertz nor LAMMPS_LAWS knows
+        (naming those that are known).
+
+    Examples
+    --------
+    LAMMPS's ``damping tsuji 0.8`` (22 Jul 2025) is Tsuji's law with alpha = poly(0.8):
+
+    >>> name, alpha, _ = hertz_law("lammps_tsuji", 0.8)
+    >>> print(name, f"{alpha:.10f}")
+    tsuji 0.1127041792
+    >>> hertz_law("viscoelastic", 3e4)[:2]
+    ('viscoelastic', 30000.0)
+    """
+    if law not in LAMMPS_LAWS:
+        import hertz
+
+        known = getattr(hertz, "DAMPING_LAWS", None)
+        if known is not None and law not in known:
+            raise ValueError(f"damping: unknown law {law!r}; known: "
+                             f"{', '.join(sorted([*known, *LAMMPS_LAWS]))}")
+        return law, float(value), f"{law!r}, {value:g}"
+    what, target, _ = LAMMPS_LAWS[law]
+    if not (math.isfinite(value) and 0 < value <= 1):
+        raise ValueError(f"damping: {law}'s VALUE is the restitution given to LAMMPS "
+                         f"(damping tsuji E), in (0, 1], got {value!r}")
+    if target == "tsuji":
+        alpha = sum(c * value ** i for i, c in enumerate(TSUJI_POLY))
+        return "tsuji", alpha, f"'tsuji', alpha = poly({value:g}) = {alpha:.6g} ({law}: {what})"
+    return target, float(value), f"{target!r}, {value:g} ({law}: {what})"
+
+
 def impact_reference(scene, mass: float, speed: float, *, damping=None, mu=None,
                      angle_deg: float = 0.0, cutoff: bool = True) -> ImpactReference:
     """The exact impact of the scene's bodies, from :mod:`hertz`.
@@ -233,12 +313,17 @@ def impact_reference(scene, mass: float, speed: float, *, damping=None, mu=None,
         Normal approach speed [m/s].
     damping : str or (str, float), optional
         ``"LAW:VALUE"``: a damped contact, graded against ``hertz.damped_impact`` of that
-        law and coefficient (``cutoff``: the attractive force cut off, as most DEM codes
-        do); None: elastic.
+        law and coefficient (:func:`hertz_law`: a law of ``hertz.DAMPING_LAWS``, or a
+        LAMMPS ``damping tsuji`` restitution of :data:`LAMMPS_LAWS`); None: elastic.
     mu : float, optional
         Friction coefficient of an oblique impact.
     angle_deg : float
         Incidence of an oblique impact from the normal [deg] (0: head-on).
+    cutoff : bool
+        With ``damping``: True, the total force is cut off at 0 (LAMMPS's
+        ``limit_damping``, most DEM codes) and the contact ends where it reaches 0;
+        False, the damping may pull (LAMMPS's default) and the contact ends when the
+        overlap returns to 0 (the reference's ``attractive``).
 
     Returns
     -------
@@ -299,7 +384,7 @@ def _damped(scene, mass, speed, law, cutoff, elastic) -> ImpactReference:
     hertz.restitution (the restitution alone)."""
     import hertz
 
-    name, coefficient = law
+    name, coefficient, described = hertz_law(*law)
     damped = getattr(hertz, "damped_impact", None)
     restitution = getattr(hertz, "restitution", None)
     if damped is None and restitution is None:
@@ -317,8 +402,8 @@ def _damped(scene, mass, speed, law, cutoff, elastic) -> ImpactReference:
     return ImpactReference(float(getattr(r, "max_approach", nan)),
                            float(getattr(r, "max_force", nan)),
                            float(getattr(r, "duration", nan)), e,
-                           f"{what}({name!r}, {coefficient:g}, cutoff={cutoff})",
-                           stiffness=elastic.stiffness)
+                           f"{what}({described}, cutoff={cutoff})",
+                           stiffness=elastic.stiffness, attractive=not cutoff)
 
 
 def _oblique_function(hertz):
@@ -433,9 +518,11 @@ def _end(t, d, f, i1) -> tuple[float, str]:
 def measure(r: ImpactTrajectory, mass: float, attractive: bool = False) -> Measured:
     """The contact's start and end, peaks and velocities in and out of a trajectory.
 
-    The contact is the first run of rows with a positive normal force (``attractive``: a
-    nonzero one, the damping pulling at the end of the contact until the overlap returns
-    to 0).
+    The contact is the first run of rows with a positive normal force; ``attractive`` (the
+    damping may pull at the end of the contact): the first run of rows with a positive
+    overlap or a nonzero force, so that it ends when the overlap returns to 0, not where
+    the force first reaches 0 (nor at a row whose force is written as 0 near its change
+    of sign).
 
     Raises
     ------
@@ -445,7 +532,7 @@ def measure(r: ImpactTrajectory, mass: float, attractive: bool = False) -> Measu
     """
     t, d, f = r.t, r.overlap, r.normal_force
     src = f"{r.source}: " if r.source else ""
-    on = (f != 0) if attractive else (f > 0)
+    on = ((f != 0) | (d > 0)) if attractive else (f > 0)
     if not (f > 0).any():
         raise ResultError(f"{src}no row has a positive normal force: the record holds no "
                           f"contact (is the force column the contact's normal force?)")
@@ -587,7 +674,8 @@ def _rms(x) -> float:
 def grade_impact(r: ImpactTrajectory, ref: ImpactReference, *, mass: float, speed: float,
                  radius: float | None = None, scene: str = "",
                  tolerances: Mapping[str, float] | None = None,
-                 details: Mapping | None = None, attractive: bool = False) -> ImpactGrade:
+                 details: Mapping | None = None, attractive: bool | None = None
+                 ) -> ImpactGrade:
     """Grade a trajectory against a reference (see the module docstring).
 
     Parameters
@@ -607,9 +695,12 @@ def grade_impact(r: ImpactTrajectory, ref: ImpactReference, *, mass: float, spee
         metric -> tolerance, replacing the derived ones.
     details : dict, optional
         Plain values the report should quote.
-    attractive : bool
-        The contact force may pull (a damping not cut off at 0): the contact lasts while
-        the force is nonzero, until the overlap returns to 0.
+    attractive : bool, optional
+        The contact force may pull (a damping not cut off at 0): the contact lasts until
+        the overlap returns to 0 (interpolated), the rebound speed is the one there (the
+        free flight after it); False: the contact ends where the force reaches 0.
+        Default: the reference's own (``ref.attractive``, from ``impact_reference(...,
+        cutoff=False)``), so that the contact is measured as the reference's is.
 
     Returns
     -------
@@ -644,8 +735,16 @@ def grade_impact(r: ImpactTrajectory, ref: ImpactReference, *, mass: float, spee
                              f"{', '.join(sorted(METRICS))}")
         if not (isinstance(value, int | float) and math.isfinite(value) and value > 0):
             raise ValueError(f"tolerances: {name} must be a finite number > 0, got {value!r}")
-    m = measure(r, mass, attractive)
+    if attractive is None:
+        attractive = bool(ref.attractive)
+    m = measure(r, mass, bool(attractive))
     notes = list(m.notes)
+    if bool(attractive) != bool(ref.attractive) and (ref.attractive
+                                                     or bool((r.normal_force < 0).any())):
+        notes.append(f"the contact is measured as one whose force "
+                     f"{'may pull' if attractive else 'is cut off at 0'}, the reference's "
+                     f"force {'may pull' if ref.attractive else 'is cut off at 0'}: the "
+                     f"duration and restitution compare different contacts")
     values, tol, basis = {}, {}, {}
     dmax, fmax, tc = ref.max_approach, ref.max_force, ref.duration
     dt = m.dt
@@ -734,7 +833,7 @@ def grade_impact(r: ImpactTrajectory, ref: ImpactReference, *, mass: float, spee
                 "max_force": m.max_force, "v_in": m.v_in, "v_out": m.v_out,
                 "restitution": m.restitution, "restitution_method": m.restitution_method,
                 "start_method": m.start_method, "end_method": m.end_method,
-                **oblique_measured}
+                "attractive": bool(attractive), **oblique_measured}
     curves = {"t": r.t, "overlap": r.overlap, "force": r.normal_force,
               "reference_force_time": ref_ft, "reference_force_overlap": ref_fd,
               "t_start": m.t_start, "t_end": m.t_end}

@@ -70,7 +70,11 @@ def impact_markdown(g, command: str = "") -> str:
         mine = mea.get("omega_after") if key == "spin" else mea.get(key)
         if key in o or mine is not None:
             lines.append(f"| {label} | {_num(o.get(key))} | {_num(mine)} |")
-    lines += ["", f"Restitution from {mea['restitution_method']}.", "",
+    rule = ("the force may pull (--damping-attractive): the contact lasts until the overlap "
+            "returns to 0" if mea.get("attractive") else
+            "the contact lasts while the force is positive")
+    lines += ["", f"Restitution from {mea['restitution_method']}. Contact: {rule}; start at "
+              f"{mea.get('start_method') or '-'}, end at {mea.get('end_method') or '-'}.", "",
               "## Checks", "",
               "Errors are (record - reference) / reference (restitution: record - "
               "reference); RMS values are fractions of the reference's F_max. Each tolerance "
