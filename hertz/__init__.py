@@ -25,7 +25,18 @@ from ._contact import (
     line_contact,
 )
 from ._ellipse import ellipticity
+from ._impact import (
+    DAMPING_LAWS,
+    DampedImpact,
+    Impact,
+    ImpactHistory,
+    damped_impact,
+    damping_coefficient,
+    impact,
+    restitution,
+)
 from ._load_path import LoadPath, LoadPathSpring, load_path
+from ._oblique import ObliqueHistory, ObliqueImpact, oblique_impact
 from ._stress import LineSubsurface, Subsurface
 from ._tangential import (
     FrettingLoop,
@@ -39,11 +50,13 @@ from ._tangential import (
 
 # Every type a public function or method returns is public: Contact.subsurface gives a
 # Subsurface, LineContact.subsurface a LineSubsurface, Tangential.maxima a SlidingMaxima.
-__all__ = ["A_OVER_R_LIMIT", "Body", "Contact", "FrettingLoop", "HertzValidityWarning",
-           "LineContact", "LineSubsurface", "LoadPath", "LoadPathSpring", "SlidingMaxima",
-           "Subsurface", "Tangential", "TangentialSpring", "contact", "dundurs_beta",
-           "ellipticity", "line_contact", "load_path", "proportional_loading",
-           "show_config", "tangential_compliance", "tangential_history"]
+__all__ = ["A_OVER_R_LIMIT", "Body", "Contact", "DAMPING_LAWS", "DampedImpact", "FrettingLoop",
+           "HertzValidityWarning", "Impact", "ImpactHistory", "LineContact", "LineSubsurface",
+           "LoadPath", "LoadPathSpring", "ObliqueHistory", "ObliqueImpact", "SlidingMaxima",
+           "Subsurface", "Tangential", "TangentialSpring", "contact", "damped_impact",
+           "damping_coefficient", "dundurs_beta", "ellipticity", "impact", "line_contact",
+           "load_path", "oblique_impact", "proportional_loading", "restitution", "show_config",
+           "tangential_compliance", "tangential_history"]
 __version__ = "0.1.0"
 #: Public names imported when first used: hertz._friction needs scipy, which ``import
 #: hertz`` does not load.

@@ -103,7 +103,11 @@ _LINE_UNITS = {"half_width": _interop.M, "p0": _interop.PA, "e_star": _interop.P
                "rho_sum": _interop.PER_M, "load_per_length": _interop.N_PER_M}
 
 _RADIUS = "a nonzero radius in m (positive convex, negative concave, inf flat)"
-_MODULUS = "a positive, finite Young's modulus in Pa"
+_MODULUS = "a positive Young's modulus in Pa (inf for a rigid body)"
+#: A rigid body's E = inf enters the kernels as the largest double: 1/E* is then the other
+#: body's (1 - nu**2)/E to the last bit (the rigid body's share, below 1e-290 of it for any
+#: E up to 1e18 Pa, rounds away); its shear modulus stays inf where the moduli are kept.
+_RIGID_E = sys.float_info.max
 _POISSON = "a Poisson's ratio in (-1, 0.5]"
 
 
@@ -138,7 +142,7 @@ def _check_body_fields(Rx, Ry, E, nu) -> None:
     with np.errstate(invalid="ignore"):
         _require("Rx", Rx, (Rx != 0) & (Rx == Rx), _RADIUS)
         _require("Ry", Ry, (Ry != 0) & (Ry == Ry), _RADIUS)
-        _require("E", E, (E > 0) & (E < math.inf), _MODULUS)
+        _require("E", E, E > 0, _MODULUS)
         _require("nu", nu, (nu > -1) & (nu <= 0.5), _POISSON)
 
 
@@ -162,7 +166,9 @@ class Body:
         positive where the surface is convex, negative where it is concave,
         ``inf`` where it is flat.  Rx lies along the body's own x axis.
     E : float or array_like
-        Young's modulus [Pa], positive and finite.
+        Young's modulus [Pa], positive; ``inf`` for a rigid body (a wall), accepted
+        wherever the other body is elastic (the contact's E* is then the other
+        body's E / (1 - nu**2)).
     nu : float or array_like
         Poisson's ratio [-], in (-1, 0.5].
 
@@ -173,7 +179,7 @@ class Body:
         array (pass ``.filled(value)`` or ``.compressed()``: masks are not
         applied).
     ValueError
-        If a radius is 0 or NaN, E is not positive and finite, nu is
+        If a radius is 0 or NaN, E is not positive (or is NaN), nu is
         outside (-1, 0.5], or a Python int is beyond the double range (the
         message names the field, the value and, for an array, its index).
 
@@ -207,6 +213,7 @@ class Body:
         if not scalar or not (Rx != 0 and Ry != 0 and 0 < E < math.inf and -1 < nu <= 0.5) \
                 or Rx != Rx or Ry != Ry:
             _check_body_fields(Rx, Ry, E, nu)
+            scalar = scalar and E < math.inf  # a rigid body takes the general path
         setter = object.__setattr__
         setter(self, "Rx", Rx)
         setter(self, "Ry", Ry)
@@ -224,7 +231,7 @@ class Body:
             Radius [m]: positive for a ball, negative for a spherical cup
             (the concave seat of a ball joint), nonzero.
         E : float or array_like
-            Young's modulus [Pa], positive and finite.
+            Young's modulus [Pa], positive (``inf``: rigid).
         nu : float or array_like
             Poisson's ratio [-], in (-1, 0.5].
 
@@ -259,7 +266,7 @@ class Body:
             Radius [m]: positive for a roller, negative for a cylindrical
             groove, nonzero.
         E : float or array_like
-            Young's modulus [Pa], positive and finite.
+            Young's modulus [Pa], positive (``inf``: rigid).
         nu : float or array_like
             Poisson's ratio [-], in (-1, 0.5].
 
@@ -288,7 +295,7 @@ class Body:
         Parameters
         ----------
         E : float or array_like
-            Young's modulus [Pa], positive and finite.
+            Young's modulus [Pa], positive (``inf``: rigid).
         nu : float or array_like
             Poisson's ratio [-], in (-1, 0.5].
 
@@ -1198,7 +1205,8 @@ def contact(body1: Body, body2: Body, load=None, angle=0.0, *, approach=None,
         For a negative, infinite or NaN load, approach or p0, a non-finite
         angle, shapes that do not broadcast, and bodies without a Hertz point
         contact (line contacts, plane on plane, over-conforming concave
-        surfaces, or a curvature ratio beyond the double range).  The message
+        surfaces, or a curvature ratio beyond the double range), and two rigid
+        bodies (both E = inf).  The message
         names the parameter, the value and, for arrays, the index.
 
     Notes
@@ -1255,6 +1263,7 @@ def contact(body1: Body, body2: Body, load=None, angle=0.0, *, approach=None,
         return _wrapped_contact(body1, body2, name, value, angle)  # pandas, xarray, pint
     args = [body1.Rx, body1.Ry, body2.Rx, body2.Ry, _kept_arg(angle, "angle"), body1.E,
             body1.nu, body2.E, body2.nu, _real_arg(value, name)]
+    args[5], args[7] = _kernel_moduli(body1.E, body2.E)
     geometry = args[:9]
     if any(is_duck_array(a) for a in args):
         return _dask_contact(fused, args, (body1.nu, body2.nu, body1.E, body2.E))
@@ -1284,6 +1293,35 @@ def contact(body1: Body, body2: Body, load=None, angle=0.0, *, approach=None,
         raise (err or exc) from None
     _check_size(c.a, body1, body2)
     return c
+
+
+def _kernel_moduli(e1, e2):
+    """The Young's moduli the kernels take: a rigid body's inf as ``_RIGID_E``; two rigid
+    bodies (E* infinite) are a ValueError naming the index (for dask arrays, a NaN that the
+    kernel refuses when computed)."""
+    if type(e1) is float and type(e2) is float:
+        if e1 < math.inf and e2 < math.inf:
+            return e1, e2
+        if e1 == e2:
+            raise ValueError(_BOTH_RIGID + ", got body1.E = body2.E = inf")
+        return min(e1, _RIGID_E), min(e2, _RIGID_E)
+    if is_duck_array(e1) or is_duck_array(e2):
+        both = (e1 == math.inf) & (e2 == math.inf)
+        return (np.where(both, math.nan, np.minimum(e1, _RIGID_E)),
+                np.where(both, math.nan, np.minimum(e2, _RIGID_E)))
+    r1, r2 = np.isinf(e1), np.isinf(e2)
+    if not (r1.any() or r2.any()):
+        return e1, e2
+    both = r1 & r2
+    if both.any():
+        shape = np.shape(both)
+        raise ValueError(_BOTH_RIGID + f", got body1.E = body2.E = inf"
+                         f"{index_text(shape, first_failure(~both))}")
+    return np.minimum(e1, _RIGID_E), np.minimum(e2, _RIGID_E)
+
+
+_BOTH_RIGID = ("body1.E and body2.E must not both be inf: at most one body may be rigid "
+               "(E* would be infinite)")
 
 
 def _kept_arg(value, name):
@@ -1351,6 +1389,7 @@ def line_contact(body1: Body, body2: Body, load_per_length) -> LineContact:
         return _wrapped_line_contact(body1, body2, load_per_length)  # pandas, xarray, pint
     args = [body1.Rx, body1.Ry, body2.Rx, body2.Ry, body1.E, body1.nu, body2.E, body2.nu,
             _real_arg(load_per_length, "load_per_length")]
+    args[4], args[6] = _kernel_moduli(body1.E, body2.E)
     if any(is_duck_array(a) for a in args):
         return _dask_line(args, (body1.nu, body2.nu))
     names = [n for n in _GEOMETRY_NAMES if n != "angle"] + ["load_per_length"]
