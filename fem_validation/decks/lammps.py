@@ -78,9 +78,6 @@ TANGENTIAL = ("mindlin", "mindlin_rescale", "mindlin/force", "mindlin_rescale/fo
 DAMPING = ("none", "viscoelastic", "tsuji", "coeff_restitution", "mass_velocity")
 #: Steps of each leg of a quasi-static path (ramp, unloading, reloading, lift, press).
 STEPS_PER_LEG = 400
-#: LAMMPS's ``damping tsuji``: alpha(e) = sum TSUJI_POLY[i] e^i, the damping force
-#: alpha sqrt(m_eff F_n / delta) delta' (gran_sub_mod_damping.cpp).
-TSUJI_POLY = (1.2728, -4.2783, 11.087, -22.348, 27.467, -18.022, 4.8218)
 #: Steps of an impact before the first touch (rows of zero force before the contact).
 LEAD = 10
 #: The output files of each case.
@@ -391,10 +388,10 @@ def lammps_deck(scene: Scene, case: str, *, tangential: str = "mindlin", mu: flo
         grade = (f"python -m fem_validation grade --impact DIR/{name} --scene SCENE --mass "
                  f"{values['mass']!r} --speed {values['normal_speed']!r}")
         if damping != "none":
-            coefficient = damping_value
-            if damping == "tsuji":   # LAMMPS's alpha(e), Tsuji's polynomial
-                coefficient = sum(c * damping_value ** i for i, c in enumerate(TSUJI_POLY))
-            grade += f" --damping {damping}:{coefficient!r}"
+            # LAMMPS's damping tsuji E (this release: alpha = poly(E)) is hertz's
+            # lammps_tsuji with the same E
+            law = "lammps_tsuji" if damping == "tsuji" else damping
+            grade += f" --damping {law}:{damping_value!r}"
             if attractive:
                 grade += " --damping-attractive"
         if angle_deg:

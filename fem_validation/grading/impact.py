@@ -60,7 +60,7 @@ from ..results.contact import ResultError
 from ..results.impact import ImpactTrajectory
 from .contact import Check, GradeMethods, nan_to_none
 
-__all__ = ["CURVE_FLOOR", "FLOOR", "LAMMPS_LAWS", "METRICS", "TSUJI_POLY", "ImpactGrade",
+__all__ = ["CURVE_FLOOR", "FLOOR", "LAMMPS_LAWS", "METRICS", "ImpactGrade",
            "ImpactReference", "grade_impact", "hertz_closed_form", "hertz_law",
            "impact_reference", "measure"]
 
@@ -73,9 +73,6 @@ CURVE_FLOOR = 2e-3
 #: The fewest rows in contact a trajectory must hold to be graded.
 MIN_CONTACT_ROWS = 5
 
-#: LAMMPS's ``damping tsuji`` coefficient alpha(e) = sum TSUJI_POLY[i] e**i (Marshall 2009,
-#: eq. 53, as src/GRANULAR/gran_sub_mod_damping.cpp writes it).
-TSUJI_POLY = (1.2728, -4.2783, 11.087, -22.348, 27.467, -18.022, 4.8218)
 
 #: ``--damping`` names for LAMMPS's ``pair_style granular`` keywords whose VALUE is not the
 #: coefficient of a :mod:`hertz` law as such: name -> (LAMMPS's keyword and version, the
@@ -86,9 +83,9 @@ TSUJI_POLY = (1.2728, -4.2783, 11.087, -22.348, 27.467, -18.022, 4.8218)
 #: since mid-2026 (``damp *= MY_SQRT2``, "effective mass convention").
 LAMMPS_LAWS = {
     "lammps_tsuji": ("damping tsuji E, LAMMPS up to 22 Jul 2025 (stable): alpha = poly(E)",
-                     "tsuji", "poly(E)"),
+                     "lammps_tsuji", "E"),
     "lammps_tsuji_sqrt2": ("damping tsuji E, LAMMPS development since mid-2026: alpha = "
-                           "sqrt(2) poly(E)", "lammps_tsuji", "E"),
+                           "sqrt(2) poly(E)", "lammps_tsuji_sqrt2", "E"),
 }
 
 #: metric -> (short name, what it measures)
@@ -273,11 +270,11 @@ def hertz_law(law: str, value: float) -> tuple[str, float, str]:
 
     Examples
     --------
-    LAMMPS's ``damping tsuji 0.8`` (22 Jul 2025) is Tsuji's law with alpha = poly(0.8):
+    LAMMPS's ``damping tsuji 0.8`` (22 Jul 2025) is hertz's ``lammps_tsuji`` with e = 0.8
+    (Tsuji's law with alpha = poly(0.8)):
 
-    >>> name, alpha, _ = hertz_law("lammps_tsuji", 0.8)
-    >>> print(name, f"{alpha:.10f}")
-    tsuji 0.1127041792
+    >>> hertz_law("lammps_tsuji", 0.8)[:2]
+    ('lammps_tsuji', 0.8)
     >>> hertz_law("viscoelastic", 3e4)[:2]
     ('viscoelastic', 30000.0)
     """
@@ -293,9 +290,6 @@ def hertz_law(law: str, value: float) -> tuple[str, float, str]:
     if not (math.isfinite(value) and 0 < value <= 1):
         raise ValueError(f"damping: {law}'s VALUE is the restitution given to LAMMPS "
                          f"(damping tsuji E), in (0, 1], got {value!r}")
-    if target == "tsuji":
-        alpha = sum(c * value ** i for i, c in enumerate(TSUJI_POLY))
-        return "tsuji", alpha, f"'tsuji', alpha = poly({value:g}) = {alpha:.6g} ({law}: {what})"
     return target, float(value), f"{target!r}, {value:g} ({law}: {what})"
 
 
