@@ -93,8 +93,8 @@ def test_contact_size_range_ends():
     # the blocks' upper end: a <= 0.0375 R_min (a larger contact on a ball in a groove of
     # another material, so no true-geometry model)
     soft = hertz.Body(math.inf, math.inf, 70e9, 0.33)
-    big = Scene("big", BALL, soft, 4 * _e_star(E, NU, 70e9, 0.33) * (0.04 * R) ** 3 / (3 * R))
-    with pytest.raises(ValueError, match=r"too large for the radii.*a/R_min <= 0.0375"):
+    big = Scene("big", BALL, soft, 4 * _e_star(E, NU, 70e9, 0.33) * (0.21 * R) ** 3 / (3 * R))
+    with pytest.raises(ValueError, match=r"too large for the radii.*a/R_min <= 0.2 "):
         build_model(big, 0)
 
 

@@ -1,4 +1,5 @@
-"""A CalculiX result (.frd, with its .inp) -> :class:`~fem_validation.results.contact.ContactResult`.
+"""A CalculiX result (.frd, with its .inp) -> a
+:class:`~fem_validation.results.contact.ContactResult`.
 
 What is read, and from where:
 
@@ -6,15 +7,23 @@ What is read, and from where:
   (the first data line: slave, master) and its ``*SURFACE, TYPE=ELEMENT``
   faces (or ``TYPE=NODE`` nodes), from the .inp beside the .frd (same name) or
   the one given; the faces' nodes in the .frd's element connectivity (4- and
-  10-node tetrahedra).  Without a deck: the nodes that carry any contact output
-  (then the edge of contact is only what the pressed nodes show);
+  10-node tetrahedra, 8- and 20-node hexahedra: their corners).  Without a deck,
+  or where the slave surface is given by node-set names: the nodes that carry any
+  contact output, on the faces of the mesh's boundary that they cover (the
+  facing surface, found from the geometry: :func:`facing_triangles`);
 * **pressure**: ``CPRESS`` of the last ``CONTACT`` set, at those nodes
   (CalculiX gives contact output at slave nodes only);
-* **force**: body 1's total reaction ``F3`` (the moved face's), times 4 for a
-  quarter model, 2 for a half; body 2's (the clamped face's) is the
-  independent ``reaction``.  Bodies are told apart by the elements' material
-  numbers: material 1 is body 1 (the decks of :mod:`fem_validation.decks`
-  define MATERIAL1 first);
+* **force**: body 1's total reaction along the contact normal (``F1..F3`` on
+  it; ``F3`` in the standard frame), times 4 for a quarter model, 2 for a half;
+  body 2's is the independent ``reaction``;
+* **the two bodies** (:func:`bodies`), whichever the files name: ``body1`` given
+  (``grade --body1 NAME``): the elements of the deck's element set NAME, or of the
+  material NAME (the deck's ``*SOLID SECTION``s, or the .frd's own ``MAT`` header
+  lines), are body 1, every other element body 2; else two material numbers on
+  the elements: material 1 is body 1 (the decks of :mod:`fem_validation.decks`
+  define MATERIAL1 first); else (one material for both, as analysts often write)
+  the connected components of the mesh (elements sharing nodes), which must be
+  two: body 1 the one on the side the contact normal points to;
 * **stresses**: the nodal ``STRESS`` set (SXX, SYY, SZZ, SXY, SYZ, SZX),
   per body, with the corner tetrahedra for interpolation;
 * **symmetry**: detected from the node coordinates (all x >= 0 and y >= 0:
@@ -27,7 +36,8 @@ What is read, and from where:
   (origin 0, normal +z into body 1).  Parts of the frame given (``grade
   --origin``, ``--normal``, ``--x-axis``) replace problem.json's; without
   problem.json the parts not given are found from the slave nodes' pressure, as
-  the other readers find them (:func:`contact_frame`).
+  the other readers find them (:func:`contact_frame`), but for a quarter or half
+  model, whose normal is z (the line of its symmetry planes).
 """
 
 from __future__ import annotations
@@ -60,6 +70,11 @@ _TET_FACES = {1: (0, 1, 2, 4, 5, 6), 2: (0, 3, 1, 7, 8, 4), 3: (1, 3, 2, 8, 9, 5
               4: (2, 3, 0, 9, 7, 6)}
 #: A 6-node triangle (corners 0-2, mid-sides 3: 01, 4: 12, 5: 20) as 4 linear triangles.
 _SPLIT6 = ((0, 3, 5), (3, 1, 4), (5, 4, 2), (3, 4, 5))
+#: Faces of hexahedra in CalculiX's numbering (S1..S6), their corners.
+_HEX_FACES = {1: (0, 1, 2, 3), 2: (4, 7, 6, 5), 3: (0, 4, 5, 1), 4: (1, 5, 6, 2),
+              5: (2, 6, 7, 3), 6: (3, 7, 4, 0)}
+#: .frd element types whose faces the readers know: tetrahedra (3, 6), hexahedra (1, 4).
+_TETS, _HEXES = (3, 6), (1, 4)
 SYMMETRY_TOL = 1e-9
 
 
@@ -152,6 +167,18 @@ def slave_surface(inp_path) -> tuple[str, list[tuple[int, int]], list[int]]:
         raise ResultError(f"{inp_path}: no *CONTACT PAIR with a data line (slave, master)")
     name = pair[1][0].split(",")[0].strip().upper()
     faces, nodes, found = [], [], False
+    sets: dict = {}
+
+    def named(set_name: str, kind: str, where: str) -> np.ndarray:
+        if kind not in sets:
+            sets[kind] = named_sets(inp_path, kind)
+        key = set_name.upper()
+        if key not in sets[kind]:
+            what = "node" if kind == "NSET" else "element"
+            raise ResultError(f"{where}: expected a {what} number, got {set_name[:40]!r}, "
+                              f"which is no {what} set of the deck either")
+        return sets[kind][key]
+
     for key, data in blocks:
         if key.startswith("*SURFACE,") and (_param(key, "NAME") or "").upper() == name:
             found = True
@@ -162,19 +189,23 @@ def slave_surface(inp_path) -> tuple[str, list[tuple[int, int]], list[int]]:
                 if not parts:
                     continue
                 if kind == "NODE":
-                    if not parts[0].isdecimal():
-                        raise ResultError(f"{where}: expected a node number, got {line!r} "
-                                          f"(node-set names are not read: list the nodes)")
-                    nodes.append(deck_id(parts[0], where, "node"))
-                elif len(parts) >= 2 and parts[0].isdecimal():
+                    for q in parts[:1] if parts[0].isdecimal() else parts:
+                        if q.isdecimal():
+                            nodes.append(deck_id(q, where, "node"))
+                        else:  # a node set's name
+                            nodes.extend(named(q, "NSET", where).tolist())
+                elif len(parts) >= 2:
                     face = parts[1].upper()
-                    if not re.fullmatch(r"S[1-4]", face):
+                    if not re.fullmatch(r"S[1-6]", face):
                         raise ResultError(f"{where}: face {parts[1]!r} of element "
-                                          f"{parts[0][:30]} (tetrahedra have S1..S4)")
-                    faces.append((deck_id(parts[0], where, "element"), int(face[1])))
+                                          f"{parts[0][:30]} (tetrahedra have S1..S4, "
+                                          f"hexahedra S1..S6)")
+                    elements = ([deck_id(parts[0], where, "element")] if parts[0].isdecimal()
+                                else named(parts[0], "ELSET", where).tolist())
+                    faces.extend((e, int(face[1])) for e in elements)
                 else:
                     raise ResultError(f"{where}: cannot read {line!r} "
-                                      f"(expected: element number, S1..S4)")
+                                      f"(expected: element number, S1..S6)")
     if not found:
         raise ResultError(f"{inp_path}: the slave surface {name} of *CONTACT PAIR is not "
                           f"defined by a *SURFACE")
@@ -199,10 +230,17 @@ def _surface(frd: FrdFile, faces, nodes, source: str):
         raise ResultError(f"{source}: slave face on element {bad}, which the .frd does not "
                           f"hold: the deck does not match the result")
     types = frd.element_types[pos]
-    if not np.all(np.isin(types, (3, 6))):
+    if np.all(np.isin(types, _HEXES)):
+        return _hex_surface(frd, pos, faces, source)
+    if not np.all(np.isin(types, _TETS)):
         raise ResultError(f"{source}: the slave surface lies on elements of .frd type "
                           f"{sorted(set(types.tolist()) - {3, 6})}; this reader knows "
-                          f"tetrahedra (types 3 and 6)")
+                          f"tetrahedra (types 3 and 6) and hexahedra (1 and 4), one kind "
+                          f"on a surface")
+    if any(f[1] > 4 for f in faces):
+        bad = next(f for f in faces if f[1] > 4)
+        raise ResultError(f"{source}: face S{bad[1]} of element {bad[0]}, a tetrahedron "
+                          f"(S1..S4)")
     six = np.array([_TET_FACES[f[1]] for f in faces])
     quadratic = np.all(types == 6)
     local = six if quadratic else six[:, :3]
@@ -211,6 +249,267 @@ def _surface(frd: FrdFile, faces, nodes, source: str):
     inverse = inverse.reshape(conn.shape)
     tri = inverse[:, list(_SPLIT6)].reshape(-1, 3) if quadratic else inverse
     return surface, tri
+
+
+def _hex_surface(frd: FrdFile, pos: np.ndarray, faces, source: str):
+    """Slave nodes and triangles of hexahedron faces: each face's four corners, as two
+    triangles (a 20-node face's mid-side nodes are left out)."""
+    quads = np.array([_HEX_FACES[f[1]] for f in faces])
+    conn = frd.connectivity[pos[:, None], quads]
+    if (conn <= 0).any():
+        raise ResultError(f"{source}: a slave face's element has fewer nodes than a "
+                          f"hexahedron in the .frd")
+    surface, inverse = np.unique(conn, return_inverse=True)
+    inverse = inverse.reshape(conn.shape)
+    return surface, inverse[:, [0, 1, 2, 0, 2, 3]].reshape(-1, 3)
+
+
+#: The faces of each element kind the readers know (0-based local nodes): 4-node
+#: tetrahedra and hexahedra by their corners, 10-node tetrahedra with their mid-side nodes.
+_ELEMENT_FACES = {3: [f[:3] for f in _TET_FACES.values()], 6: list(_TET_FACES.values()),
+                  1: list(_HEX_FACES.values()), 4: list(_HEX_FACES.values())}
+#: Each kind of face (by its number of nodes) as triangles of its local nodes.
+_FACE_TRIANGLES = {3: ((0, 1, 2),), 4: ((0, 1, 2), (0, 2, 3)), 6: _SPLIT6}
+
+
+def facing_triangles(frd: FrdFile, nodes: np.ndarray) -> np.ndarray | None:
+    """The faces of the mesh's boundary whose nodes are all among ``nodes`` (node
+    numbers: the surface that carries contact output), as triangles of indices into
+    ``nodes``; None where no such face is found (the grader then triangulates the nodes
+    in the contact plane).
+
+    A face on the boundary belongs to one element only; a face whose nodes all carry
+    contact output lies on the contact surface (CalculiX reports the slave's nodes, so
+    the faces are the slave body's).  10-node tetrahedra's faces are split in four at
+    their mid-side nodes, hexahedra's in two (a 20-node face by its corners).
+    """
+    nodes = np.unique(np.asarray(nodes, dtype=np.int64))
+    if not len(frd.elements) or len(nodes) < 3:
+        return None
+    out = []
+    for etype, local in _ELEMENT_FACES.items():
+        rows = np.nonzero(frd.element_types == etype)[0]
+        if not len(rows):
+            continue
+        faces = frd.connectivity[rows[:, None, None], np.array(local)[None]]
+        faces = faces.reshape(-1, len(local[0]))
+        faces = faces[np.isin(faces, nodes).all(axis=1)]
+        if not len(faces):
+            continue
+        corners = np.sort(faces[:, :len(local[0]) if etype != 6 else 3], axis=1)
+        _, first, count = np.unique(corners, axis=0, return_index=True, return_counts=True)
+        faces = faces[first[count == 1]]  # on the boundary: one element only
+        out.append(faces[:, list(_FACE_TRIANGLES[faces.shape[1]])].reshape(-1, 3))
+    if not out:
+        return None
+    return np.searchsorted(nodes, np.vstack(out))
+
+
+@dataclass(frozen=True)
+class DeckSets:
+    """What a deck says of its elements' grouping: element sets and materials.
+
+    Attributes
+    ----------
+    elsets : dict
+        ``{NAME: element numbers}`` (upper-case names): ``*ELEMENT, ELSET=`` and
+        ``*ELSET`` (numbers, other sets' names, ``GENERATE``).
+    sections : dict
+        ``{ELSET: MATERIAL}`` of the ``*SOLID SECTION`` s (upper case).
+    """
+
+    elsets: dict
+    sections: dict
+
+
+def named_sets(inp_path, kind: str = "ELSET") -> dict:
+    """``{NAME: numbers}`` (upper-case names) of a deck's element sets (``kind`` "ELSET":
+    ``*ELEMENT, ELSET=`` and ``*ELSET``) or node sets ("NSET": ``*NODE, NSET=`` and
+    ``*NSET``): numbers, other sets' names, ``GENERATE``.
+
+    Raises
+    ------
+    ResultError
+        Naming the file and line: a data line that is not numbers (or set names), a
+        ``GENERATE`` line that is not start, end[, step]; a set that names an undefined
+        set or itself.
+    """
+    inp_path = Path(inp_path)
+    what = "element" if kind == "ELSET" else "node"
+    define = "*ELEMENT" if kind == "ELSET" else "*NODE"
+    try:
+        blocks = _keyword_blocks(inp_path, (define, f"*{kind}"))
+    except OSError as exc:
+        raise ResultError(f"{inp_path}: cannot read: {exc.strerror or exc}") from None
+    sets: dict[str, list] = {}
+    for key, data in blocks:
+        word = key.split(",")[0].strip()
+        name = (_param(key, kind) or "").upper()
+        if word == define and name:
+            numbers, continued = sets.setdefault(name, []), False
+            for line in data:
+                if not continued:
+                    head = line.split(",")[0].strip()
+                    numbers.append(deck_id(head, f"{inp_path}: line {line.number}", what))
+                continued = what == "element" and line.rstrip().endswith(",")
+        elif word == f"*{kind}" and name:
+            numbers = sets.setdefault(name, [])
+            generate = re.search(r",\s*GENERATE\b", key) is not None
+            for line in data:
+                where = f"{inp_path}: line {line.number}: *{kind} {name}"
+                parts = [q.strip() for q in line.split(",") if q.strip()]
+                if generate:
+                    if not 2 <= len(parts) <= 3 or not all(q.isdecimal() for q in parts):
+                        raise ResultError(f"{where}: GENERATE takes start, end[, step], got "
+                                          f"{line[:60]!r}")
+                    a, b, step = (*map(int, parts), 1)[:3]
+                    if step < 1 or b < a or (b - a) // step > 100_000_000:
+                        raise ResultError(f"{where}: GENERATE {a}, {b}, {step}: expected "
+                                          f"start <= end and a step >= 1")
+                    numbers.extend(range(a, b + 1, step))
+                    continue
+                for q in parts:
+                    if q.isdecimal():
+                        numbers.append(deck_id(q, where, what))
+                    else:
+                        numbers.append(q.upper())  # another set's name, resolved below
+    resolved: dict[str, np.ndarray] = {}
+
+    def resolve(name, seen=()):
+        if name in resolved:
+            return resolved[name]
+        if name in seen:
+            raise ResultError(f"{inp_path}: *{kind} {name} contains itself")
+        out = []
+        for item in sets.get(name, []):
+            if isinstance(item, str):
+                if item not in sets:
+                    raise ResultError(f"{inp_path}: *{kind} {name} names the set {item}, "
+                                      f"which the deck does not define")
+                out.extend(resolve(item, (*seen, name)).tolist())
+            else:
+                out.append(item)
+        resolved[name] = np.unique(np.asarray(out, dtype=np.int64))
+        return resolved[name]
+
+    for name in sets:
+        resolve(name)
+    return resolved
+
+
+def deck_sets(inp_path) -> DeckSets:
+    """The element sets and the sections' materials of a deck (:class:`DeckSets`).
+
+    Raises
+    ------
+    ResultError
+        As :func:`named_sets`.
+    """
+    inp_path = Path(inp_path)
+    elsets = named_sets(inp_path, "ELSET")
+    try:
+        blocks = _keyword_blocks(inp_path, ("*SOLID SECTION",))
+    except OSError as exc:
+        raise ResultError(f"{inp_path}: cannot read: {exc.strerror or exc}") from None
+    sections = {}
+    for key, _ in blocks:
+        name = (_param(key, "ELSET") or "").upper()
+        material = (_param(key, "MATERIAL") or "").upper()
+        if name and material:
+            sections[name] = material
+    return DeckSets(elsets, sections)
+
+
+def frd_materials(frd: FrdFile) -> dict[str, int]:
+    """``{NAME: number}`` of the materials the .frd's header names (``MAT    1STEEL``)."""
+    out = {}
+    for h in frd.headers:
+        m = re.match(r"MAT\s*(\d+)\s*(\S.*)$", h)
+        if m:
+            out[m.group(2).strip().upper()] = int(m.group(1))
+    return out
+
+
+def bodies(frd: FrdFile, inp_path, body1: str | None, source: str):
+    """The two bodies of a CalculiX result: (element masks of body 1 and body 2 over
+    ``frd.elements``, how they were told apart, whether the order is known).
+
+    ``body1`` names an element set of the deck or a material (of the deck's sections or
+    the .frd's header): its elements are body 1, all others body 2.  Otherwise two
+    material numbers (material 1 body 1); otherwise the mesh's connected components
+    (elements sharing nodes), which must be two; their order is then not known (False):
+    the caller puts body 1 on the side the contact normal points to.
+
+    Raises
+    ------
+    ResultError
+        ``body1`` names no set or material of the files (the names they hold are
+        listed), or takes every element or none; not two bodies.
+    """
+    mats = frd.element_materials
+    if body1 is not None:
+        key = str(body1).strip().upper()
+        sets = deck_sets(inp_path) if inp_path is not None and Path(inp_path).is_file() \
+            else DeckSets({}, {})
+        numbers = materials = None
+        if key in sets.elsets:
+            numbers, how = sets.elsets[key], f"element set {key}"
+        else:
+            in_frd = frd_materials(frd)
+            chosen = [e for e, m in sets.sections.items() if m == key]
+            if chosen:
+                numbers = np.unique(np.concatenate([sets.elsets.get(e, np.zeros(0, np.int64))
+                                                    for e in chosen]))
+                how = f"material {key} (sections of {', '.join(chosen)})"
+            elif key in in_frd:
+                materials, how = in_frd[key], f"material {key} (number {in_frd[key]})"
+            else:
+                known = sorted(set(sets.elsets) | set(sets.sections.values()) | set(in_frd))
+                raise ResultError(f"{source}: body1 {body1!r} names no element set or "
+                                  f"material of the files; they name: "
+                                  f"{', '.join(known) or 'none (no deck beside the .frd)'}")
+        one = np.isin(frd.elements, numbers) if materials is None else mats == materials
+        if one.all() or not one.any():
+            raise ResultError(f"{source}: body1 {body1!r} ({how}) holds "
+                              f"{'every' if one.any() else 'no'} element of the .frd: name "
+                              f"the set or material of one body only")
+        return (one, ~one), how + " is body 1, the rest body 2", True
+    found = sorted(set(mats.tolist()))
+    if len(found) == 2:
+        return (mats == found[0], mats == found[1]), \
+            f"material numbers {found[0]} (body 1) and {found[1]} (body 2)", True
+    if len(found) > 2:
+        raise ResultError(f"{source}: expected two bodies, found {len(found)} material "
+                          f"numbers on the elements ({found}): name body 1's element set or "
+                          f"material (grade --body1 NAME)")
+    labels = _components(frd)
+    count = int(labels.max()) + 1 if len(labels) else 0
+    if count != 2:
+        raise ResultError(f"{source}: expected two bodies: one material on the elements and "
+                          f"{count} connected parts of the mesh (elements sharing nodes): "
+                          f"name body 1's element set or material (grade --body1 NAME)")
+    return (labels == 0, labels == 1), "the mesh's two connected parts (one material)", False
+
+
+def _components(frd: FrdFile) -> np.ndarray:
+    """The connected part of each element (0, 1, ...): elements sharing a node are one."""
+    from scipy.sparse import coo_matrix
+    from scipy.sparse.csgraph import connected_components
+
+    conn = frd.connectivity
+    if not len(conn):
+        return np.zeros(0, dtype=np.int64)
+    n = len(frd.nodes)
+    rows = np.repeat(np.arange(len(conn)), conn.shape[1])
+    flat = conn.ravel()
+    keep = flat > 0
+    cols = frd.node_index(flat[keep])
+    graph = coo_matrix((np.ones(int(keep.sum())), (rows[keep], len(conn) + cols)),
+                       shape=(len(conn) + n, len(conn) + n))
+    _, labels = connected_components(graph, directed=False)
+    element_labels = labels[:len(conn)]
+    _, dense = np.unique(element_labels, return_inverse=True)
+    return dense
 
 
 def _symmetry(xyz: np.ndarray) -> str:
@@ -536,7 +835,7 @@ def components(result: FrdResult, names, source: str) -> np.ndarray:
 def read_calculix(path, inp=None, units: str | None = None, symmetry: str | None = None,
                   problem=None, stress: bool = True, tetrahedra: bool = False,
                   force: float | None = None, frame: ContactFrame | dict | None = None,
-                  pressure_name: str = "CPRESS") -> ContactResult:
+                  pressure_name: str = "CPRESS", body1: str | None = None) -> ContactResult:
     """Read a CalculiX .frd (ASCII or binary) into a contact result in SI.
 
     Parameters
@@ -563,6 +862,10 @@ def read_calculix(path, inp=None, units: str | None = None, symmetry: str | None
         (:func:`contact_frame`).  Default problem.json's, else the standard frame.
     pressure_name : str
         The contact pressure's component name (default CPRESS).
+    body1 : str, optional
+        An element set of the deck, or a material (the deck's or the .frd's), whose
+        elements are body 1 (:func:`bodies`); default: the two material numbers, else
+        the mesh's two connected parts.
     tetrahedra : bool
         Also hand the grader each body's corner tetrahedra, for the stress-field
         RMS.  Off by default: the grader samples that field at depths below the
@@ -603,12 +906,17 @@ def read_calculix(path, inp=None, units: str | None = None, symmetry: str | None
         name, faces, nodes = slave_surface(inp_path)
         surface, tri = _surface(frd, faces, nodes, f"{inp_path}")
         how = f"slave surface {name} of {inp_path.name}"
+        if tri is None:  # a surface of nodes: the boundary faces they cover
+            tri = facing_triangles(frd, surface)
+            how += "" if tri is None else ", on the mesh's boundary faces its nodes cover"
     else:
         contact = frd.result("CONTACT") if any(r.name == "CONTACT" for r in frd.results) \
             else None
         rows = np.any(contact.values != 0, axis=1) if contact is not None else cpress != 0
-        surface, tri = (contact.nodes if contact is not None else cnodes)[rows], None
-        how = "nodes with contact output (no deck found)"
+        surface = np.unique((contact.nodes if contact is not None else cnodes)[rows])
+        tri = facing_triangles(frd, surface)
+        how = ("nodes with contact output (no deck found)" + (
+            ", on the mesh's boundary faces they cover" if tri is not None else ""))
     lookup = {n: i for i, n in enumerate(cnodes.tolist())}
     missing = [n for n in surface.tolist() if n not in lookup]
     if missing:
@@ -619,12 +927,10 @@ def read_calculix(path, inp=None, units: str | None = None, symmetry: str | None
     points = xyz_all[frd.node_index(surface)]
     sym = symmetry or _symmetry(xyz_all)
 
-    # reactions per body from the elements' materials
-    mats = sorted(set(frd.element_materials.tolist()))
-    if len(mats) != 2:
-        raise ResultError(f"{source}: expected two bodies (two material numbers on the "
-                          f"elements), found {len(mats)}: {mats}")
-    body_nodes = [np.unique(frd.connectivity[frd.element_materials == m]) for m in mats]
+    # the two bodies: named, by material, or the mesh's connected parts
+    masks, bodies_how, ordered = bodies(frd, inp_path if inp_path.is_file() else None,
+                                        body1, source)
+    body_nodes = [np.unique(frd.connectivity[m]) for m in masks]
     body_nodes = [n[n > 0] for n in body_nodes]
     try:
         rnodes, rz = frd.field("F3")
@@ -633,42 +939,71 @@ def read_calculix(path, inp=None, units: str | None = None, symmetry: str | None
                           f"*NODE FILE with RF") from None
     mult = {"whole": 1, "half": 2, "quarter": 4}.get(sym)
     if mult is None:
-        raise ResultError(f"{source}: symmetry must be whole, half or quarter, got {sym!r}")
-    reactions = [mult * abs(float(rz[np.isin(rnodes, n)].sum())) for n in body_nodes]
+        raise ResultError(f"{source}: symmetry must be one of whole, half, quarter, got "
+                          f"{sym!r}")
+    if sym in ("quarter", "half") and info is None and isinstance(frame, dict) \
+            and frame.get("normal") is None:
+        # a quarter model (x >= 0, y >= 0): the normal is the symmetry planes' line, z (a
+        # half model's, in its plane: z, as a deck's); found from a curved surface cut by
+        # the planes it would lean a little towards them
+        frame = {**frame, "normal": [0.0, 0.0, 1.0]}
+    frame = contact_frame(frame, info, to_m, points, pressure, sym != "whole", source)
+    if not ordered:
+        # body 1 lies on the side the normal points to: its nodes' centroid is the higher
+        height = [float(np.mean(xyz_all[frd.node_index(n)] @ frame.normal)) for n in body_nodes]
+        if height[1] > height[0]:
+            masks, body_nodes = masks[::-1], body_nodes[::-1]
+        bodies_how += ": body 1 on the side the contact normal points to"
+    forc = next((r for r in reversed(frd.results) if "F3" in r.components), None)
+    if forc is not None and {"F1", "F2"} <= set(forc.components):
+        rnodes = forc.nodes
+        along = components(forc, ("F1", "F2", "F3"), source) @ np.asarray(frame.normal)
+    else:
+        along = rz * float(np.asarray(frame.normal)[2])
+    reactions = [mult * abs(float(along[np.isin(rnodes, n)].sum())) for n in body_nodes]
     reaction = reactions[1]
-    force = reactions[0] if force is None else mult * float(force)
+    if force is not None:
+        force = mult * float(force)
+    elif reactions[0] <= 1e-6 * reactions[1]:
+        # body 1 loaded by a force (*CLOAD), not a displacement: no reaction on it, and
+        # body 2's clamped face carries the force; no independent check is left
+        force, reaction = reactions[1], None
+        bodies_how += "; body 1 carries no reaction (loaded by a force): the force is body 2's"
+    else:
+        force = reactions[0]
 
     details = {"solver": "CalculiX", "file": source, "units": units, "contact_surface": how,
+               "bodies": bodies_how,
                "nodes": len(frd.nodes), "elements": len(frd.elements),
                "version": next((h.split(None, 1)[1].strip() for h in frd.headers
                                 if h.startswith("VERSION")), "")}
-    frame = contact_frame(frame, info, to_m, points, pressure, sym != "whole", source)
     approach = None
     if info is not None:
         approach = _approach(info, force, to_m, to_pa)
         details |= {k: v for k, v in info.details.items() if k != "stick_slope"}
         details["approach_note"] = ("prescribed approach plus the Boussinesq settlement of "
                                     "half-spaces at the far faces' depths, at the force")
-    bodies = []
+    stresses = []
     if stress and any(r.name == "STRESS" for r in frd.results):
         st = frd.result("STRESS")
         sig = stress_from_voigt(components(st, ("SXX", "SYY", "SZZ", "SXY", "SYZ", "SZX"),
                                            source), "xx yy zz xy yz xz") * to_pa
         rows = frd.node_index(st.nodes)
         tetra = np.isin(frd.element_types, (3, 6))  # corner tetrahedra of tetrahedra only
-        for body, (m, nodes) in enumerate(zip(mats, body_nodes, strict=True), start=1):
+        for body, (mask, nodes) in enumerate(zip(masks, body_nodes, strict=True), start=1):
             keep = np.isin(st.nodes, nodes)
             where = rows[keep]
             local = np.full(len(frd.nodes), -1, dtype=np.int64)
             local[where] = np.arange(keep.sum())
-            conn = frd.connectivity[(frd.element_materials == m) & tetra][:, :4]
+            conn = frd.connectivity[mask & tetra][:, :4]
             tets = local[frd.node_index(conn.ravel())].reshape(-1, 4)
             tets = tets[np.all(tets >= 0, axis=1)]
-            bodies.append(BodyStress(body, xyz_all[where], sig[keep],
-                                     tetrahedra=tets if tetrahedra else None, source=source))
+            stresses.append(BodyStress(body, xyz_all[where], sig[keep],
+                                       tetrahedra=tets if tetrahedra else None,
+                                       source=source))
     return ContactResult(points=points, force=force, pressure=pressure, symmetry=sym,
                          frame=frame, triangles=tri, approach=approach, reaction=reaction,
-                         stress=tuple(bodies), source=source, details=details)
+                         stress=tuple(stresses), source=source, details=details)
 
 
 def _approach(info: Problem, force: float, to_m: float, to_pa: float) -> float | None:
@@ -699,13 +1034,16 @@ def read_result(path, *, units: str = "SI", symmetry: str | None = None,
     :func:`fem_validation.readers.read_result`).
 
     See :func:`fem_validation.readers.calculix.read_calculix`; ``fields`` may name
-    the pressure component (``{"pressure": "CPRESS"}``).  Where the deck's
-    problem.json lies beside the file, its units must agree with ``units``.
+    the pressure component (``{"pressure": "CPRESS"}``) and body 1's element set or
+    material (``{"body1": "BALL"}``).  Where the deck's problem.json lies beside the
+    file, its units must agree with ``units``.
     """
     fields = dict(fields or {})
-    unknown = set(fields) - {"pressure"}
+    unknown = set(fields) - {"pressure", "body1"}
     if unknown:
         raise ResultError(f"{path}: a .frd takes only the field 'pressure' (a component "
-                          f"name such as CPRESS), got {', '.join(sorted(unknown))}")
+                          f"name such as CPRESS) and 'body1' (an element set or material "
+                          f"of body 1), got {', '.join(sorted(unknown))}")
     return read_calculix(path, units=units, symmetry=symmetry, force=force, frame=frame,
-                         pressure_name=fields.get("pressure", "CPRESS"))
+                         pressure_name=fields.get("pressure", "CPRESS"),
+                         body1=fields.get("body1"))

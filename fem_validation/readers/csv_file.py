@@ -2,7 +2,8 @@
 
 The file::
 
-    # force = 4065.5      the total normal force of the model in the file [N]
+    # force = 4065.5      the total normal force of the model in the file [N]; without
+                          it (and without --force), the integral of p over the surface
     # symmetry = quarter  optional: whole, half, quarter (else detected)
     # units = mm          optional: SI or mm (mm, N, MPa); default: the columns'
                           units (x [mm], p [MPa]), else SI
@@ -14,7 +15,13 @@ Columns (a header row, any order, case-insensitive): ``x``, ``y``, optionally ``
 ``p`` (or ``pressure``, ``cpress``) and/or ``f`` (or ``normal_force``: the nodal normal
 contact force); optionally ``active`` (1/0).  x, y are taken as coordinates in the
 contact plane unless a frame is given.  Options of :func:`read_csv` override the ``#``
-lines.
+lines.  Columns of other names are chosen by the ``fields`` option (``grade --columns
+x=x_m,y=y_m,p=p_pa``, read by :func:`parse_columns`); a unit at the end of a name
+(``x_m``, ``p_pa``) sets the units as it does anywhere (below).  A file that gives no force
+(a boundary-element code's pressure on a grid, say) is graded at the integral of its
+pressure over the surface (the nodal pressure times the lumped area of a triangulation in
+the contact plane, as the grader integrates it): the grade's ``pressure_integral`` check is
+then met by construction, and ``details["force_from"]`` says so.
 
 Every CSV reader of :mod:`fem_validation.readers` reads its file through
 :func:`read_table`, which accepts what spreadsheets write:
@@ -23,7 +30,8 @@ Every CSV reader of :mod:`fem_validation.readers` reads its file through
 * commas, semicolons or tabs between cells (the header row's most frequent one); with
   semicolons or tabs, a decimal comma (``0,25``);
 * rows of empty cells (a spreadsheet's blank row) and ``# key = value`` lines padded with
-  empty cells (``# force = 25,,``);
+  empty cells (``# force = 25,,``); comment lines starting with ``#``, ``%`` (MATLAB,
+  Octave) or ``//``;
 * a unit in a column's name: ``x [mm]``, ``p (MPa)``, ``x/mm``, ``pressure_MPa``.  Length
   columns in m (SI) or mm, pressure columns in Pa (SI) or MPa (= N/mm^2, mm), force
   columns in N; where neither the ``units`` option nor a ``# units`` line says, the
@@ -397,19 +405,19 @@ def read_table(path, choose) -> Table:
                     meta.add(m.group(1).lower(), m.group(2).rstrip(",;\t ").strip('"'), lineno)
                     continue
                 stripped = line.strip()
-                if (not stripped.strip(",;\t\" ") or stripped.startswith("#")
+                if (not stripped.strip(",;\t\" ") or stripped.startswith(("#", "%", "//"))
                         or stripped.startswith('"#')):
                     continue  # a blank line, a spreadsheet's empty row, a comment
                 if table is None:
                     delimiter = _delimiter(line)
-                    labels = [c.strip() for c in _cells(line, delimiter,
-                                                        lambda: f"{src}, line {lineno}")]
+                    labels = [c.strip() for c in _cells(
+                        line, delimiter, lambda n=lineno: f"{src}, line {n}")]
                     names, units = zip(*(split_unit(c) for c in labels), strict=True)
                     table = Table(src, meta, labels, list(names), list(units), lineno)
                     table.columns = dict(choose(table))
                     picked = [c.index for c in table.columns.values()]
                     continue
-                cells = _cells(line, delimiter, lambda: f"{src}, line {lineno}")
+                cells = _cells(line, delimiter, lambda n=lineno: f"{src}, line {n}")
                 if len(cells) != len(table.labels):
                     raise ResultError(f"{src}, line {lineno}: {len(cells)} values, the header "
                                       f"(line {table.header_line}) has {len(table.labels)} "
@@ -444,6 +452,78 @@ def read_table(path, choose) -> Table:
                               f"{int(bad.sum())} non-finite value(s), first on line "
                               f"{int(table.lines[int(np.argmax(bad))])}")
     return table
+
+
+#: The roles a column may be given for with ``--columns ROLE=NAME`` (and their short
+#: names): the keys of ``fields`` that :func:`read_csv` takes.
+COLUMN_ROLES = {"x": "x", "y": "y", "z": "z", "p": "pressure", "pressure": "pressure",
+                "f": "normal_force", "normal_force": "normal_force", "active": "active"}
+
+
+def parse_columns(text: str) -> dict:
+    """``"x=x_m,y=y_m,p=p_pa"`` (``grade --columns``) as the ``fields`` of :func:`read_csv`.
+
+    Roles: x, y, z, p (or pressure), f (or normal_force), active; each at most once; a
+    column's name as the header writes it (case-insensitive; with its unit, ``x_m`` or
+    ``x [mm]``).
+
+    Raises
+    ------
+    ValueError
+        Naming the item: not ROLE=NAME, an unknown role, a role given twice.
+
+    Examples
+    --------
+    >>> parse_columns("x=x_m, y=y_m, p=p_pa")
+    {'x': 'x_m', 'y': 'y_m', 'pressure': 'p_pa'}
+    """
+    out = {}
+    for item in str(text).split(","):
+        if not item.strip():
+            continue
+        role, sep, name = item.partition("=")
+        role, name = role.strip().lower(), name.strip()
+        if not sep or not name:
+            raise ValueError(f"--columns {text!r}: expected ROLE=NAME items separated by "
+                             f"commas, got {item.strip()!r}")
+        if role not in COLUMN_ROLES:
+            raise ValueError(f"--columns {text!r}: unknown role {role!r}; roles: "
+                             f"{', '.join(COLUMN_ROLES)}")
+        key = COLUMN_ROLES[role]
+        if key in out:
+            raise ValueError(f"--columns {text!r}: the {key} column is given twice")
+        out[key] = name
+    if not out:
+        raise ValueError(f"--columns {text!r}: expected ROLE=NAME items (x=x_m,y=y_m,p=p_pa)")
+    return out
+
+
+def pressure_force(points: np.ndarray, pressure: np.ndarray, frame, source: str) -> float:
+    """The integral of the nodal pressure over a surface [N]: each node's pressure [Pa]
+    times its lumped area in the contact plane (a Delaunay triangulation of the points
+    [m] there, :func:`fem_validation.fe.surface.surface_triangles`), as the grader
+    integrates it.
+
+    Raises
+    ------
+    ResultError
+        The integral is not a finite number > 0 (no positive pressure).
+    """
+    from ..fe.surface import lumped_area, surface_triangles
+    from .common import resolve_frame
+
+    probe = resolve_frame(frame, points, pressure, True, source)
+    xy = probe.to_frame(points)[:, :2]
+    try:
+        area = lumped_area(xy, surface_triangles(xy))
+    except Exception as exc:  # qhull: points on a line, too few points
+        raise ResultError(f"{source}: no force given and the pressure cannot be integrated "
+                          f"over the points ({type(exc).__name__}): give --force N") from None
+    force = float(pressure @ area)
+    if not (math.isfinite(force) and force > 0):
+        raise ResultError(f"{source}: no force given and the integral of the pressure over "
+                          f"the surface is {force!r} N: give --force N")
+    return force
 
 
 def _optional(pairs):
@@ -499,9 +579,20 @@ def read_csv(path, *, units: str | None = None, symmetry: str | None = None,
     points = np.column_stack([t["x"], t["y"], z]) * length
     pressure = t["pressure"] * pressure_unit if "pressure" in t else None
     normal_force = t["normal_force"] * force_unit if "normal_force" in t else None
+    details = {"reader": "csv", "units": units}
+    if force is None and normal_force is not None and np.isfinite(normal_force).all():
+        force = float(normal_force.sum()) / force_unit
+        details["force_from"] = "the sum of the nodal forces (no force given)"
+    elif force is None and pressure is not None and (pressure > 0).any():
+        from ..results.contact import surface_points
+
+        force = pressure_force(surface_points(points, src), pressure, frame, src) / force_unit
+        details["force_from"] = ("the integral of the pressure over the surface (no force "
+                                 "given)")
+        details["by_construction"] = ["pressure_integral_rel_err"]
     result = finish(points, pressure, normal_force,
                     None if force is None else float(force) * force_unit, symmetry, frame,
-                    source=src, details={"reader": "csv", "units": units})
+                    source=src, details=details)
     if "active" in t:
         from dataclasses import replace
 

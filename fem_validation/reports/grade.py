@@ -113,6 +113,16 @@ def grade_markdown(g, command: str = "") -> str:
                   f"{method}), "
                   f"p0 {g.fem['p0']:.6g} Pa (fit of p^2 above 20% of the largest pressure), "
                   f"largest nodal pressure {g.fem['peak_nodal_pressure']:.6g} Pa"]
+        v = h.get("validity") or {}
+        if v:
+            dep = v["departure"]
+            lines.append(f"- Hertz's validity: a/R = {v['a_over_r']:.4g} (R the smallest "
+                         f"radius; hertz.A_OVER_R_LIMIT = {v['limit']:.3g}), conformity "
+                         f"{v['conformity']:.2f}; true curved bodies depart from the theory "
+                         f"there by a {dep['a']:+.2%}, b {dep['b']:+.2%}, p0 {dep['p0']:+.2%}, "
+                         f"approach {dep['delta']:+.2%} ("
+                         + ("extrapolated from " if v["departure_extrapolated"] else "")
+                         + f"{v['departure_from']})")
     convention = ("Errors are (result - Hertz) / Hertz, Hertz's force taken at the same "
                   "approach." if curve else SIGN_CONVENTION)
     lines += ["", "## Sign convention", "", convention, "",
@@ -268,4 +278,88 @@ def write_grade(g, out: Path, command: str = "") -> tuple[Path, Path, Path]:
     paths[0].write_text(grade_json(row))
     paths[1].write_text(grade_markdown(g, command))
     plot_grade(g, paths[2])
+    return paths
+
+
+def series_markdown(s, grades, command: str = "") -> str:
+    """grade.md of a mesh series: each mesh's size and verdict, then per metric its values,
+    observed order, extrapolated value and uncertainty."""
+    from ..grading.contact import METRICS
+    from ..grading.series import SAFETY_FACTOR
+
+    lines = [f"# Mesh series against Hertz: {'PASSED' if all(s.passed) else 'FAILED'}", ""]
+    if command:
+        lines.append(f"- command: `{command}`")
+    lines += [f"- scene: {s.scene}", "",
+              "| mesh | result | h [m] | force [N] | grade |", "|---|---|---|---|---|"]
+    by_source = {g.source: g for g in grades}
+    for k, (src, h, ok) in enumerate(zip(s.sources, s.h, s.passed, strict=True), start=1):
+        g = by_source.get(src)
+        force = f"{g.force:.6g}" if g is not None else "-"
+        lines.append(f"| {k} | `{Path(src).name}` | {h:.4g} | {force} | "
+                     f"{'PASSED' if ok else 'FAILED'} |")
+    lines += ["", "## Convergence", "",
+              "Observed order p from the three finest meshes (Roache's grid convergence "
+              "study); the value extrapolated to h -> 0 (Richardson) and its uncertainty, "
+              f"the finest mesh's grid convergence index ({SAFETY_FACTOR} |e3 - e2| / "
+              "((h2/h3)^p - 1)).  Values are relative errors against Hertz at each "
+              "mesh's own force."
+              + (f"  Expected order: {s.expected_order:g}." if s.expected_order else ""), "",
+              "| metric | " + " | ".join(f"mesh {k}" for k in range(1, len(s.h) + 1))
+              + " | order | extrapolated | uncertainty | behaviour |",
+              "|---" * (len(s.h) + 5) + "|"]
+    for name, c in s.metrics.items():
+        vals = " | ".join(_fmt(name, v) for v in c.values)
+        order = "-" if math.isnan(c.order) else f"{c.order:.2f}"
+        lines.append(f"| {METRICS.get(name, (name,))[0]} | {vals} | {order} | "
+                     f"{_fmt(name, c.extrapolated)} | "
+                     f"{'-' if math.isnan(c.uncertainty) else f'{c.uncertainty:.2%}'} | "
+                     f"{c.behaviour} |")
+    return "\n".join(lines) + "\n"
+
+
+@quiet_figure()
+def plot_series(s, path: Path) -> Path:
+    """grade.png of a mesh series: |error| against the mesh size, log-log, per metric."""
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    fig, ax = plt.subplots(figsize=(8, 5.5))
+    h = np.asarray(s.h)
+    for name in ("a_rel_err", "b_rel_err", "p0_rel_err", "rms_major", "von_mises_rel_err"):
+        c = s.metrics.get(name)
+        if c is None:
+            continue
+        v = np.abs(np.asarray(c.values, dtype=float))
+        if not (np.isfinite(v) & (v > 0)).any():
+            continue
+        label = name + ("" if math.isnan(c.order) else f" (p = {c.order:.2f})")
+        ax.loglog(h * 1e3, v, "o-", ms=4, label=label)
+    ax.set_xlabel("mesh size h [mm]")
+    ax.set_ylabel("|relative error| against Hertz")
+    ax.grid(True, which="both", alpha=0.3)
+    ax.legend(fontsize=9)
+    figure_title(fig, [f"mesh series against Hertz: {'PASSED' if all(s.passed) else 'FAILED'}",
+                       f"{s.scene}; {len(h)} meshes"])
+    fig.tight_layout()
+    fig.savefig(path, dpi=120)
+    plt.close(fig)
+    return path
+
+
+def write_series(s, grades, out: Path, command: str = "") -> tuple[Path, Path, Path]:
+    """DIR/grade.json, DIR/grade.md and DIR/grade.png of a mesh series
+    (:class:`fem_validation.grading.series.Series`), each mesh's grade in grade.json."""
+    out = Path(out)
+    paths = out / "grade.json", out / "grade.md", out / "grade.png"
+    row = s.to_dict()
+    row["passed_all"] = all(s.passed)
+    row["grades"] = [{k: v for k, v in g.to_dict().items() if k != "stress"} for g in grades]
+    if command:
+        row["command"] = command
+    paths[0].write_text(grade_json(row))
+    paths[1].write_text(series_markdown(s, grades, command))
+    plot_series(s, paths[2])
     return paths
