@@ -7,6 +7,10 @@
         --scene FILE.toml [--direction-deg 0] [--normal-force N] [--symmetry quarter]
         [--snapshot INDEX] --out DIR
     python -m fem_validation grade --tangential RUN/hertz.frd --scene FILE.toml --out DIR
+    python -m fem_validation grade --history PATH.csv --scene FILE.toml [--mu MU] [--law LAW]
+        [--driven auto] --out DIR     (a DEM history alone: cli/grade_history.py)
+    python -m fem_validation grade --impact RUN.csv --scene FILE.toml --mass M --speed V
+        [--damping LAW:VALUE] [--mu MU --angle-deg A] --out DIR  (cli/grade_impact.py)
 
 Writes DIR/grade.json, DIR/grade.md and DIR/grade.png (``--tangential``: a frictional
 result against Cattaneo-Mindlin and Mindlin-Deresiewicz,
@@ -81,7 +85,9 @@ def parser() -> OneLineParser:
                         "path is read from the increments)")
     t.add_argument("--history", type=Path, metavar="PATH.csv",
                    help="the tangential path (columns displacement, force), from the "
-                        "unloaded state: ramp, unloading, reloading")
+                        "unloaded state: ramp, unloading, reloading; alone (without "
+                        "--tangential): a DEM code's history graded by itself (columns "
+                        "displacement, force[, normal_force]; --law, --driven)")
     t.add_argument("--mu", type=positive, help="coefficient of friction (default: the "
                                                 "surface file's '# mu' line)")
     t.add_argument("--direction-deg", type=finite, metavar="DEG",
@@ -105,6 +111,12 @@ def parser() -> OneLineParser:
     for role in ("pressure", "normal-force", "reaction", "stress"):
         p.add_argument(f"--{role}-field", metavar="NAME[:COMPONENT]",
                        help=f"name of the {role.replace('-', ' ')} field (default: recognised)")
+    p.add_argument("--columns", metavar="ROLE=NAME,...",
+                   help="a CSV's columns by role: x, y, z, p, f, active (e.g. "
+                        "x=x_m,y=y_m,p=p_pa; a unit in the name sets the units)")
+    p.add_argument("--body1", metavar="NAME",
+                   help="a .frd's body 1: an element set or material of the deck (default: "
+                        "two materials, else the mesh's two connected parts)")
     p.add_argument("--origin", type=vector, metavar="X,Y,Z",
                    help="contact point in the file's coordinates, in --units (default: found; "
                         "what is not given of origin, normal, x axis is found)")
@@ -120,6 +132,18 @@ def parser() -> OneLineParser:
     p.add_argument("--tolerances", type=Path, metavar="FILE.toml",
                    help="tolerances from a TOML file (NAME = VALUE lines)")
     # mode hooks (parser): each grade mode in its own module adds its options here
+    from .grade_history import add_options as _history_options  # --history alone
+
+    _history_options(p)
+    from .grade_impact import add_arguments as _impact_options  # --impact
+
+    _impact_options(p)
+    from .grade_series import add_options as _series_options  # --series RUN1 RUN2 ...
+
+    _series_options(p)
+    from .grade_plane import add_options as _plane_options  # --model plane-strain|axisymmetric
+
+    _plane_options(p)
     p.add_argument("--out", type=Path, default=Path("grade_out"), help="output directory")
     add_overwrite(p, "an earlier grade's grade.json, .md and .png are replaced without it")
     return p
@@ -196,6 +220,24 @@ def run(argv: list[str]) -> int:
 
     command = " ".join(["python -m fem_validation grade", *argv])
     # mode hooks (run): a mode in its own module returns its exit status here
+    from .grade_history import history_only, run_history  # --history alone
+
+    if history_only(args):
+        return run_history(args, argv, tolerances_from, GRADE_FILES)
+    if args.impact is not None:  # --impact
+        from .grade_impact import run as run_impact
+
+        return run_impact(args, argv)
+    from .grade_series import run_series, series_mode  # --series RUN1 RUN2 ...
+
+    if series_mode(args):
+        return run_series(args, argv, tolerances_from, GRADE_FILES, _analyst_fields,
+                          _read_framed)
+    from .grade_plane import plane_mode, run_plane  # --model plane-strain|axisymmetric
+
+    plane = plane_mode(args)
+    if plane is not None:
+        return run_plane(args, argv, plane, tolerances_from, GRADE_FILES)
     inputs = [x for x in (args.result, args.force_approach, args.tangential) if x is not None]
     if len(inputs) != 1:
         raise UsageError("python -m fem_validation grade: give a RESULT file, "
@@ -276,6 +318,7 @@ def run(argv: list[str]) -> int:
                                     ("normal_force", args.normal_force_field),
                                     ("reaction", args.reaction_field),
                                     ("stress", args.stress_field)) if v is not None}
+        fields |= _analyst_fields(args)  # --columns (a CSV's), --body1 (a .frd's)
 
         def read(frame):
             return read_result(args.result, units=args.units, symmetry=args.symmetry,
@@ -284,6 +327,28 @@ def run(argv: list[str]) -> int:
     json_path, md_path, png_path = write_grade(g, out, command)
     print(f"{g.summary}; wrote {json_path}, {md_path}, {png_path}")
     return 0 if g.passed else 1
+
+
+def _analyst_fields(args) -> dict:
+    """``--columns`` (a CSV's columns by role) and ``--body1`` (a .frd's body 1) as the
+    readers' ``fields``; each refused for a file it does not apply to."""
+    from ..readers.csv_file import parse_columns
+
+    suffix = args.result.suffix.lower()
+    out = {}
+    if args.columns is not None:
+        if suffix != ".csv":
+            raise UsageError(f"--columns applies to a .csv result, not {args.result.name}")
+        try:
+            out |= parse_columns(args.columns)
+        except ValueError as exc:
+            raise UsageError(str(exc)) from None
+    if args.body1 is not None:
+        if suffix != ".frd":
+            raise UsageError(f"--body1 applies to a .frd (CalculiX) result, not "
+                             f"{args.result.name}")
+        out["body1"] = args.body1
+    return out
 
 
 def _frame(args, units: str | None, source) -> dict:
