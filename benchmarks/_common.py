@@ -11,7 +11,12 @@ DOCS = ROOT / "docs"
 
 
 def cpu_name() -> str:
-    """The processor's name, as ``hertz.show_config()`` reports it."""
+    """The processor's name, as ``hertz.show_config()`` reports it (from the checkout
+    where hertz is not installed: hertz._build_info is pure Python)."""
+    import sys
+
+    if str(ROOT) not in sys.path:
+        sys.path.append(str(ROOT))
     from hertz._build_info import _cpu_name
 
     return _cpu_name()

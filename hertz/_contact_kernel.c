@@ -141,8 +141,14 @@ any_flag(ptrdiff_t n, const double *flags)
 HERTZ_INLINE void
 veltkamp(double a, double *hi, double *lo)
 {
-    double t = 134217729.0 * a; /* 2^27 + 1 */
-    *hi = t - (t - a);
+    /* a rounded to 26 significant bits on its bits (add half of bit 27 of the
+     * significand, clear the 27 below: a carry into the exponent is right) and
+     * lo = a - hi exactly, |lo| <= 2^26 ulp(a): the halves of Veltkamp's
+     * splitting (2^27 + 1) a, which take three floating-point operations to
+     * this one integer addition and one AND, with what Dekker's product needs
+     * (each half of at most 26 bits).  For finite a below 2^1023 (no product
+     * of the kernels comes near). */
+    *hi = as_double((as_bits(a) + 0x4000000ull) & 0xFFFFFFFFF8000000ull);
     *lo = a - *hi;
 }
 
@@ -228,10 +234,11 @@ sin2_cos2(double x, double *sin2_x, double *cos2_x)
     double k, r = reduce_half_pi(x, &k), z = r * r;
     double sr = sin_reduced(r, z);
     double s2 = sr * sr, c2 = 1.0 - s2;
-    /* k odd: sin^2 x = cos^2 r */
-    double odd = k - 2.0 * ((k * 0.5 + ROUND) - ROUND);
-    *sin2_x = odd != 0.0 ? c2 : s2;
-    *cos2_x = odd != 0.0 ? s2 : c2;
+    /* k odd: sin^2 x = cos^2 r; the parity of k is the last bit of k + ROUND
+     * (exact, |k| < 2^20), and the two are swapped on their bits */
+    uint64_t odd = 0 - (as_bits(k + ROUND) & 1), swap = (as_bits(s2) ^ as_bits(c2)) & odd;
+    *sin2_x = as_double(as_bits(s2) ^ swap);
+    *cos2_x = as_double(as_bits(c2) ^ swap);
 }
 
 /* sin^2 x and cos^2 x as double-doubles (to about 2^-100 relative) for
@@ -289,7 +296,7 @@ inverse_cube_root(double m, double j)
     const double C0 = 0.8735853831770144, C1 = -0.1938092862297736,
                  C2 = 0.08593193062435243, C3 = -0.049690080091560035,
                  C4 = 0.028427719739719047;
-    double x = m * (j >= 2.0 ? 4.0 : (j >= 1.0 ? 2.0 : 1.0)), t = m - 1.5;
+    double x = m * pow2(j), t = m - 1.5; /* 2^j by its bits: no select */
     double r = (C0 + t * (C1 + t * (C2 + t * (C3 + t * C4))))
                * (j >= 2.0 ? 0.6299605249474366 : (j >= 1.0 ? 0.7937005259840998 : 1.0));
     r = r * (4.0 - x * (r * r * r)) * (1.0 / 3.0);
@@ -316,18 +323,28 @@ inverse_cube_root(double m, double j)
 
 /* The six quantities of curvature_products, in the order Sx, Sy, g1, g2, Cx,
  * Cy, are sign (p[k] + q[k]) (a[k] b[k]), each of p, q, a, b a radius, 1 or 0.
- * Returns the sign of r1x r1y r2x r2y; *pabs = Pi. */
+ * Returns r1x r1y r2x r2y (for its sign); *pabs = Pi.  finite = 1 (a constant)
+ * where every radius is known to be finite: u = r and w = 1, the same bits
+ * without the selects that stand in for an infinite radius. */
 HERTZ_INLINE double
 curvature_terms(double r1x, double r1y, double r2x, double r2y, double p[6], double q[6],
-                double a[6], double b[6], double *pabs)
+                double a[6], double b[6], double *pabs, const int finite)
 {
-    double f1x = fabs(r1x) == INFINITY ? 0.0 : r1x, f1y = fabs(r1y) == INFINITY ? 0.0 : r1y;
-    double f2x = fabs(r2x) == INFINITY ? 0.0 : r2x, f2y = fabs(r2y) == INFINITY ? 0.0 : r2y;
-    double u1x = f1x == 0.0 ? 1.0 : r1x, u1y = f1y == 0.0 ? 1.0 : r1y;
-    double u2x = f2x == 0.0 ? 1.0 : r2x, u2y = f2y == 0.0 ? 1.0 : r2y;
+    double u1x = r1x, u1y = r1y, u2x = r2x, u2y = r2y;
     /* w = 1 for a finite radius, 0 for an infinite one: 1/r = w/u */
-    double w1x = f1x == 0.0 ? 0.0 : 1.0, w1y = f1y == 0.0 ? 0.0 : 1.0;
-    double w2x = f2x == 0.0 ? 0.0 : 1.0, w2y = f2y == 0.0 ? 0.0 : 1.0;
+    double w1x = 1.0, w1y = 1.0, w2x = 1.0, w2y = 1.0;
+    if (!finite) {
+        double f1x = fabs(r1x) == INFINITY ? 0.0 : r1x, f1y = fabs(r1y) == INFINITY ? 0.0 : r1y;
+        double f2x = fabs(r2x) == INFINITY ? 0.0 : r2x, f2y = fabs(r2y) == INFINITY ? 0.0 : r2y;
+        u1x = f1x == 0.0 ? 1.0 : r1x;
+        u1y = f1y == 0.0 ? 1.0 : r1y;
+        u2x = f2x == 0.0 ? 1.0 : r2x;
+        u2y = f2y == 0.0 ? 1.0 : r2y;
+        w1x = f1x == 0.0 ? 0.0 : 1.0;
+        w1y = f1y == 0.0 ? 0.0 : 1.0;
+        w2x = f2x == 0.0 ? 0.0 : 1.0;
+        w2y = f2y == 0.0 ? 0.0 : 1.0;
+    }
     const double sum[6][2] = {{w1x * u2x, w2x * u1x}, {w1y * u2y, w2y * u1y},
                               {w1x * u1y, -(w1y * u1x)}, {w2x * u2y, -(w2y * u2x)},
                               {w1x * u2y, w2y * u1x}, {w1y * u2x, w2x * u1y}};
@@ -342,18 +359,22 @@ curvature_terms(double r1x, double r1y, double r2x, double r2y, double p[6], dou
     }
     double pi = (u1x * u1y) * (u2x * u2y);
     *pabs = fabs(pi);
-    return pi < 0.0 ? -1.0 : 1.0;
+    return pi;
 }
 
 HERTZ_INLINE void
 curvature_products(double r1x, double r1y, double r2x, double r2y, double *sx, double *sy,
-                   double *g1, double *g2, double *cx, double *cy, double *pabs)
+                   double *g1, double *g2, double *cx, double *cy, double *pabs,
+                   const int finite)
 {
     double p[6], q[6], a[6], b[6], v[6];
-    double sign = curvature_terms(r1x, r1y, r2x, r2y, p, q, a, b, pabs);
+    double pi = curvature_terms(r1x, r1y, r2x, r2y, p, q, a, b, pabs, finite);
+    /* sign (p + q) (a b) with the sign of pi: its sign bit XORed in (a
+     * product's sign is the XOR of its factors', its modulus the same) */
+    uint64_t sign = as_bits(pi) & 0x8000000000000000ull;
     HERTZ_UNROLL(6)
     for (int k = 0; k < 6; ++k) {
-        v[k] = sign * (p[k] + q[k]) * (a[k] * b[k]);
+        v[k] = as_double(as_bits((p[k] + q[k]) * (a[k] * b[k])) ^ sign);
     }
     *sx = v[0];
     *sy = v[1];
@@ -389,7 +410,7 @@ curvature_determinant(double sx, double sy, double cx, double cy, double gg, dou
 HERTZ_INLINE int
 cancels(double sx, double sy, double trace, double det, double terms)
 {
-    return fabs(trace) < 0.5 * (fabs(sx) + fabs(sy)) || fabs(det) < 0.5 * terms;
+    return (fabs(trace) < 0.5 * (fabs(sx) + fabs(sy))) | (fabs(det) < 0.5 * terms);
 }
 
 /* ------------------------------- exponent-scaled double-double arithmetic */
@@ -609,7 +630,7 @@ static double
 block_axis_angle(const double r[4], double angle)
 {
     double sx, sy, g1, g2, cx, cy, pabs, ss, cc;
-    curvature_products(r[0], r[1], r[2], r[3], &sx, &sy, &g1, &g2, &cx, &cy, &pabs);
+    curvature_products(r[0], r[1], r[2], r[3], &sx, &sy, &g1, &g2, &cx, &cy, &pabs, 0);
     sin2_cos2(angle, &ss, &cc);
     if (ss == 0.0) {
         return sx > sy ? 0.5 * PI : 0.0;
@@ -735,10 +756,17 @@ typedef struct {
  * rest.  Four divisions an element: rs, alpha, rho_y = det/rho_x, E*.
  * aligned = 1 for a block whose angles are all zero: the principal planes
  * coincide, rho_x and rho_y are the pair sums (no sine, no square root, no
- * det/rho_x), with the bits the general code gives at angle 0. */
+ * det/rho_x), with the bits the general code gives at angle 0.
+ * common = 1 for a block of finite radii and angles of modulus at least
+ * COMMON_ANGLE: no infinite radius to stand in for, and sin^2 psi is never 0
+ * there (psi = k pi/2 + r with r = psi for k = 0, |r| > 2^-70 for any double
+ * psi at k != 0), so that the aligned case inside the general formulas cannot
+ * arise; the same bits with fewer operations. */
+#define COMMON_ANGLE 0x1p-500
+
 HERTZ_INLINE double
 fast_geometry_common(ptrdiff_t n, const double *const in[HERTZ_NGEOMETRY], stage1 *restrict s,
-                     const int aligned)
+                     const int aligned, const int common)
 {
     const double *restrict R1X = in[HERTZ_R1X], *restrict R1Y = in[HERTZ_R1Y];
     const double *restrict R2X = in[HERTZ_R2X], *restrict R2Y = in[HERTZ_R2Y];
@@ -749,36 +777,36 @@ fast_geometry_common(ptrdiff_t n, const double *const in[HERTZ_NGEOMETRY], stage
 #endif
     for (ptrdiff_t i = 0; i < n; ++i) { /* vectorised */
         double r1x = R1X[i], r1y = R1Y[i], r2x = R2X[i], r2y = R2Y[i], angle = ANGLE[i];
-        /* bad = 1 where the element leaves the common case (NaN included) */
-        double bad = 0.0, a;
-        a = fabs(r1x);
-        bad = a >= lo ? bad : 1.0;
-        bad = a <= hi ? bad : (a == INFINITY ? bad : 1.0);
-        a = fabs(r1y);
-        bad = a >= lo ? bad : 1.0;
-        bad = a <= hi ? bad : (a == INFINITY ? bad : 1.0);
-        a = fabs(r2x);
-        bad = a >= lo ? bad : 1.0;
-        bad = a <= hi ? bad : (a == INFINITY ? bad : 1.0);
-        a = fabs(r2y);
-        bad = a >= lo ? bad : 1.0;
-        bad = a <= hi ? bad : (a == INFINITY ? bad : 1.0);
-        bad = fabs(angle) <= FAST_ANGLE ? bad : 1.0;
-        /* harmless stand-ins where bad (the element is redone by the scalar code) */
-        r1x = bad == 0.0 ? r1x : 1.0;
-        r1y = bad == 0.0 ? r1y : 1.0;
-        r2x = bad == 0.0 ? r2x : 1.0;
-        r2y = bad == 0.0 ? r2y : 1.0;
-        angle = bad == 0.0 ? angle : 0.0;
+        /* ok = 0 where the element leaves the common case (NaN included): the
+         * tests are ANDed as truth values (compares and ANDs of masks on vectors,
+         * where a chain of selects would cost three operations a test) */
+        double a1x = fabs(r1x), a1y = fabs(r1y), a2x = fabs(r2x), a2y = fabs(r2y);
+        int ok;
+        if (common) {
+            ok = (a1x >= lo) & (a1x <= hi) & (a1y >= lo) & (a1y <= hi) & (a2x >= lo)
+                 & (a2x <= hi) & (a2y >= lo) & (a2y <= hi) & (fabs(angle) <= FAST_ANGLE);
+        }
+        else {
+            ok = (a1x >= lo) & ((a1x <= hi) | (a1x == INFINITY)) & (a1y >= lo)
+                 & ((a1y <= hi) | (a1y == INFINITY)) & (a2x >= lo)
+                 & ((a2x <= hi) | (a2x == INFINITY)) & (a2y >= lo)
+                 & ((a2y <= hi) | (a2y == INFINITY)) & (fabs(angle) <= FAST_ANGLE);
+        }
+        /* harmless stand-ins where not ok (the element is redone by the scalar code) */
+        r1x = ok ? r1x : 1.0;
+        r1y = ok ? r1y : 1.0;
+        r2x = ok ? r2x : 1.0;
+        r2y = ok ? r2y : 1.0;
+        angle = ok ? angle : 0.0;
         double sx, sy, g1, g2, cx, cy, pabs;
-        curvature_products(r1x, r1y, r2x, r2y, &sx, &sy, &g1, &g2, &cx, &cy, &pabs);
+        curvature_products(r1x, r1y, r2x, r2y, &sx, &sy, &g1, &g2, &cx, &cy, &pabs, common);
         double rs = (sx + sy) / pabs;
         double big = fabs(sx) > fabs(sy) ? fabs(sx) : fabs(sy);
         if (!aligned) {
             big = fabs(g1) > big ? fabs(g1) : big;
             big = fabs(g2) > big ? fabs(g2) : big;
         }
-        bad = big > 0.0 ? bad : 1.0;
+        ok &= big > 0.0;
         double t;
         split_normal(big > 0.0 ? big : 1.0, &t);
         double f = pow2(-t);
@@ -804,19 +832,19 @@ fast_geometry_common(ptrdiff_t n, const double *const in[HERTZ_NGEOMETRY], stage
             rx = 0.5 * (trace + d);
             ry = d <= 0.5 * trace ? 0.5 * (trace - d) : det / rx;
             ry = ry < rx ? ry : rx;
-            rx = ss == 0.0 ? (sx > sy ? sx : sy) : rx; /* aligned principal planes */
-            ry = ss == 0.0 ? (sx > sy ? sy : sx) : ry;
-            /* (written as one select: two keep GCC 12 from vectorising the loop) */
-            bad = ss == 0.0 ? bad : (det >= DBL_MIN ? (trace > 0.0 ? bad : 1.0) : 1.0);
             /* (1') or the trace cancelling: the scalar code's double-double */
-            bad = ss == 0.0 ? bad : (cancels(sx, sy, trace, det, terms) ? 1.0 : bad);
+            int valid = (det >= DBL_MIN) & (trace > 0.0) & !cancels(sx, sy, trace, det, terms);
+            if (!common) {
+                rx = ss == 0.0 ? (sx > sy ? sx : sy) : rx; /* aligned principal planes */
+                ry = ss == 0.0 ? (sx > sy ? sy : sx) : ry;
+                valid |= ss == 0.0;
+            }
+            ok &= valid;
         }
-        bad = rx > 0.0 ? bad : 1.0;
-        bad = ry >= DBL_MIN ? bad : 1.0;
-        bad = rx / ry <= DBL_MAX ? bad : 1.0;
-        s->other[i] = bad;
-        s->alpha[i] = bad == 0.0 ? rx / ry : 1.0;
-        s->rs[i] = bad == 0.0 ? rs : 1.0;
+        ok &= (rx > 0.0) & (ry >= DBL_MIN) & (rx / ry <= DBL_MAX);
+        s->other[i] = ok ? 0.0 : 1.0;
+        s->alpha[i] = ok ? rx / ry : 1.0;
+        s->rs[i] = ok ? rs : 1.0;
         s->rse[i] = 0.0;
         s->ce[i] = t;
         s->pabs[i] = pabs;
@@ -884,17 +912,51 @@ HERTZ_INLINE double
 fast_geometry_body(GEOMETRY_PARAMETERS, const int fused)
 {
     (void)fused;
-    return fast_geometry_common(n, in, s, 0);
+    return fast_geometry_common(n, in, s, 0, 0);
 }
 HERTZ_VERSIONS(double, fast_geometry, GEOMETRY_PARAMETERS, GEOMETRY_NAMES)
+
+HERTZ_INLINE double
+fast_geometry_finite_body(GEOMETRY_PARAMETERS, const int fused)
+{
+    (void)fused;
+    return fast_geometry_common(n, in, s, 0, 1);
+}
+HERTZ_VERSIONS(double, fast_geometry_finite, GEOMETRY_PARAMETERS, GEOMETRY_NAMES)
 
 HERTZ_INLINE double
 fast_geometry_aligned_body(GEOMETRY_PARAMETERS, const int fused)
 {
     (void)fused;
-    return fast_geometry_common(n, in, s, 1);
+    return fast_geometry_common(n, in, s, 1, 0);
 }
 HERTZ_VERSIONS(double, fast_geometry_aligned, GEOMETRY_PARAMETERS, GEOMETRY_NAMES)
+
+/* Which variant of the block code: 1 if an angle is not 0 (else aligned), |
+ * 2 if a radius is infinite or an angle below COMMON_ANGLE in modulus (else
+ * common, where an angle is not 0). */
+#define KIND_PARAMETERS ptrdiff_t n, const double *const in[HERTZ_NGEOMETRY]
+#define KIND_NAMES n, in
+
+HERTZ_INLINE int
+geometry_kind_body(KIND_PARAMETERS, const int fused)
+{
+    (void)fused;
+    double turned[HERTZ_BLOCK], special[HERTZ_BLOCK];
+    const double *restrict R1X = in[HERTZ_R1X], *restrict R1Y = in[HERTZ_R1Y];
+    const double *restrict R2X = in[HERTZ_R2X], *restrict R2Y = in[HERTZ_R2Y];
+    const double *restrict ANGLE = in[HERTZ_ANGLE];
+    for (ptrdiff_t i = 0; i < n; ++i) { /* vectorised */
+        double angle = fabs(ANGLE[i]);
+        int odd = (fabs(R1X[i]) == INFINITY) | (fabs(R1Y[i]) == INFINITY)
+                  | (fabs(R2X[i]) == INFINITY) | (fabs(R2Y[i]) == INFINITY)
+                  | !(angle >= COMMON_ANGLE);
+        turned[i] = angle == 0.0 ? 0.0 : 1.0;
+        special[i] = odd ? 1.0 : 0.0;
+    }
+    return any_flag(n, turned) | (any_flag(n, special) << 1);
+}
+HERTZ_VERSIONS(int, geometry_kind, KIND_PARAMETERS, KIND_NAMES)
 
 /* Stage 1 for a block, with the scalar code for the flagged elements (and
  * for the major-axis angle when asked).  HERTZ_OK, or an error code with
@@ -903,12 +965,17 @@ static int
 geometry_stage(ptrdiff_t n, const double *const in[HERTZ_NGEOMETRY], stage1 *s,
                double *theta, ptrdiff_t *bad, hertz_scaled *rho_x, hertz_scaled *rho_y)
 {
-    double flags[HERTZ_BLOCK];
-    for (ptrdiff_t i = 0; i < n; ++i) {
-        flags[i] = in[HERTZ_ANGLE][i] == 0.0 ? 0.0 : 1.0;
+    int kind = HERTZ_PICK(geometry_kind)(n, in);
+    double any;
+    if (!(kind & 1)) {
+        any = HERTZ_PICK(fast_geometry_aligned)(n, in, s);
     }
-    double any = any_flag(n, flags) ? HERTZ_PICK(fast_geometry)(n, in, s)
-                             : HERTZ_PICK(fast_geometry_aligned)(n, in, s);
+    else if (!(kind & 2)) {
+        any = HERTZ_PICK(fast_geometry_finite)(n, in, s);
+    }
+    else {
+        any = HERTZ_PICK(fast_geometry)(n, in, s);
+    }
     any += HERTZ_PICK(fast_moduli)(n, in, s);
     if (any == 0.0 && !theta) {
         return HERTZ_OK;
@@ -994,8 +1061,8 @@ static void
 coefficients_stage(ptrdiff_t n, const stage1 *s, const double *lam, const double *K,
                    const double *E, double *const c[HERTZ_NCOEFFICIENTS])
 {
-    HERTZ_PICK(coefficients_loop)(n, s->rs, s->rse, s->esm, s->ese, lam, K, E, c[0], c[1], c[2], c[3], c[4],
-                      c[5], c[6], c[7], c[8]);
+    HERTZ_PICK(coefficients_loop)(n, s->rs, s->rse, s->esm, s->ese, lam, K, E, c[0], c[1], c[2],
+                                  c[3], c[4], c[5], c[6], c[7], c[8]);
 }
 
 /* Stage 4: the load-dependent outputs from the value v = vm 2^ve (vm in
@@ -1056,9 +1123,10 @@ given_load_body(GIVEN_PARAMETERS, const int fused, const int fast)
         xl *= pow2(-xe); /* xm / xh, exactly */
         double e = cbe[i] + vme + xe;
         double q = (e * (1.0 / 3.0) + ROUND) - ROUND, j = e - 3.0 * q;
-        q = j < 0.0 ? q - 1.0 : q;
-        j = j < 0.0 ? j + 3.0 : j; /* e = 3q + j, j in {0, 1, 2} */
-        double f = j >= 2.0 ? 4.0 : (j >= 1.0 ? 2.0 : 1.0);
+        double below = j < 0.0 ? 1.0 : 0.0; /* (one AND of the mask: cheaper than selects) */
+        q -= below;
+        j += 3.0 * below; /* e = 3q + j, j in {0, 1, 2} */
+        double f = pow2(j);
         xh = xm * f;
         xl *= f;
         /* b = bh + bl: bh = x r^2 with r = x^(-1/3), then one Newton step in
@@ -1092,9 +1160,10 @@ given_approach_body(GIVEN_PARAMETERS, const int fused, const int fast)
         double tl = ((vmi - pp) - pe) / cdm[i];
         double e = vme - cde[i];
         double q = (e * 0.5 + ROUND) - ROUND, j = e - 2.0 * q;
-        q = j < 0.0 ? q - 1.0 : q;
-        j = j < 0.0 ? j + 2.0 : j; /* e = 2q + j, j in {0, 1} */
-        double f = j >= 1.0 ? 2.0 : 1.0;
+        double below = j < 0.0 ? 1.0 : 0.0;
+        q -= below;
+        j += 2.0 * below; /* e = 2q + j, j in {0, 1} */
+        double f = pow2(j);
         th *= f;
         tl *= f;
         double bh = sqrt(th);
