@@ -89,8 +89,19 @@ def assert_same_bits(ours, other):
     # ordinary loads (the fast scaling) and loads to 1e+-300 (blocks redone with the exact
     # scaling); random angles, then all at angle 0 (the aligned geometry)
     load = np.concatenate([10 ** rng.uniform(-3, 5, n // 2), 10 ** rng.uniform(-300, 300, n // 2)])
-    for angle in (geometry[4], np.zeros(n)):
-        scene = [*geometry[:4], angle, *geometry[5:]]
+    # then blocks that mix the kernel's geometry variants: infinite radii, angles at and one
+    # ulp either side of 2^-500 (the bound of the variant for finite radii and angles),
+    # subnormal, multiples of pi/2, large
+    special = np.array([0.0, 2.0**-500, np.nextafter(2.0**-500, 0), np.nextafter(2.0**-500, 1),
+                        -(2.0**-500), 2.0**-501, 1e-320, np.pi / 2, np.pi, 2e5, -2e5])
+    mixed = geometry[4].copy()
+    mixed[::7] = np.resize(special, mixed[::7].size)
+    flat_y = geometry[3].copy()
+    flat_y[::5] = np.inf  # body 2 a concave groove, straight along y
+    scenes = ([*geometry[:4], geometry[4], *geometry[5:]],
+              [*geometry[:4], np.zeros(n), *geometry[5:]],
+              [*geometry[:3], flat_y, mixed, *geometry[5:]])
+    for scene in scenes:
         for name, value in (("contact_load", load), ("contact_approach", load * 1e-9),
                             ("contact_p0", load * 1e6)):
             np.testing.assert_array_equal(getattr(ours, name)(*scene, value),
