@@ -86,12 +86,16 @@ MISMATCH = 1.5
 #: reach: our blocks at level 4 are within 0.25% in a, b, p0 (README), CalculiX 2.20 (G.
 #: Dhondt's program) on a sphere on a block (measured: docs/howto/calculix.md; the works
 #: cited: docs/bibliography.md) within 0.4% in a and b from the p^2 fit, p0 -0.8% to
-#: -1.15% (12.8k to 57.9k nodes), profile RMS 1.3-2.8% of p0, pressure integral +0.65%
+#: -1.15% (12.8k to 57.9k nodes), profile RMS 1.3-3.3% of p0 on a sphere and up to 4.4%
+#: along the minor axis of elongated contacts (an ellipsoid, Rx 12 / Ry 30 mm, level 1:
+#: node-to-surface penalty contact smears the pressure one element past the edge, 92% of
+#: that RMS between 1.0 and 1.2 b; tolerance 5%, the converged shape is checked by a, b
+#: and p0), pressure integral +0.65%
 #: against the reaction, the slave body's von Mises maximum 3.1-3.6% low at every mesh
 #: size.  Override per call (``tolerances``) or on the command line (--tolerance NAME=VALUE).
 DEFAULT_TOLERANCES = {
     "a_rel_err": 0.01, "b_rel_err": 0.01, "p0_rel_err": 0.02,
-    "rms_major": 0.04, "rms_minor": 0.04, "pressure_integral_rel_err": 0.02,
+    "rms_major": 0.05, "rms_minor": 0.05, "pressure_integral_rel_err": 0.02,
     "angle_err_deg": 1.0, "approach_rel_err": 0.02,
     "von_mises_rel_err": 0.05, "z_von_mises_rel_err": 0.10,
     "stress_rms_axis": 0.03, "stress_rms_major_plane": 0.03, "stress_rms_minor_plane": 0.03,
