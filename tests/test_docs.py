@@ -38,7 +38,8 @@ DOCS = ROOT / "docs"
 README = ROOT / "README.md"
 TEST_COMMAND = 'pip install -e ".[test,fem,docs]" && python -m pytest'
 MARKERS = ("solver-table", "memory-table", "stress-table", "speed-vs-error", "fem-validation",
-           "fem-study", "fem-curved")
+           "fem-study", "fem-curved", "builds-table", "plane-study", "lammps-models",
+           "dem-laws")
 RUN = ("python", "pycon", "toml", "console")
 #: pages whose Python examples need a program's output that this test cannot make, and why
 EXTERNAL = {"docs/howto/calculix.md": "its Python examples read the .frd of a CalculiX run "
