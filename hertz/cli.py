@@ -100,7 +100,8 @@ def _number(text: str) -> float:
 
 
 def _parser() -> argparse.ArgumentParser:
-    p = _Parser(prog="hertz", description="Hertz point contact of two elastic bodies "
+    p = _Parser(prog="hertz", description="Hertz point contact of two elastic bodies, or "
+                "a line contact of parallel cylinders (a --scene with load_per_length) "
                 "(SI units; radii negative for concave, inf for flat).",
                 epilog=_help_epilog(), formatter_class=argparse.RawDescriptionHelpFormatter)
     p.add_argument("--scene", metavar="FILE", help="TOML scene file (format below; options "
@@ -346,6 +347,13 @@ def _solve(scene: dict):
             c = contact(body1, body2, angle=math.radians(degrees), **kwargs)
         except TypeError as exc:
             raise _UsageError(str(exc)) from None
+        except ValueError as exc:
+            if not str(exc).startswith("the bodies make a line contact"):
+                raise
+            given = "an approach [m]" if "approach" in kwargs else "a load [N]"
+            raise _UsageError(f"{str(exc).split(';')[0]}: {given} is a point contact's; "
+                              f"give the force per unit length as load_per_length [N/m] in a "
+                              f"--scene file (without --load or --approach)") from None
     notes = []
     for w in caught:
         if issubclass(w.category, HertzValidityWarning):

@@ -88,7 +88,8 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
                                              "plane-strain", "axisymmetric"),
                         default="auto",
                         help="quarter, half (y >= 0) or whole model (default: quarter where "
-                             "the scene allows; half with --friction); plane-strain or "
+                             "the scene allows; half with --friction; plane-strain for a "
+                             "line-contact scene, load_per_length); plane-strain or "
                              "axisymmetric: a 2-D deck (fem_validation.decks.plane)")
     parser.add_argument("--slave", type=int, choices=(1, 2), default=1,
                         help="body whose contact face is the slave surface (default 1)")
@@ -121,6 +122,16 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
                         f"0 (default {DEFAULT_FRICTION_INCREMENTS})")
 
 
+def _line_scene(scene) -> bool:
+    """Whether the scene file is a line contact (``load_per_length``)."""
+    try:
+        from hertz._scene import read_scene as read_toml
+
+        return "load_per_length" in read_toml(scene)
+    except (OSError, ValueError, TypeError):
+        return False  # a named scene, or refused below with its own message
+
+
 def run(args: argparse.Namespace, command: str | None = None) -> int:
     """Run the ``deck`` subcommand; ValueError / FEMValidationError propagate to the caller.
 
@@ -130,6 +141,8 @@ def run(args: argparse.Namespace, command: str | None = None) -> int:
     options' model and format) and ``--out`` is checked (new or empty, unless
     ``--overwrite``), in that order, before anything is meshed or written.
     """
+    if args.model == "auto" and _line_scene(args.scene):  # load_per_length: plane strain
+        args.model = "plane-strain"
     if args.model in ("plane-strain", "axisymmetric"):  # a 2-D deck: decks/plane.py
         from ..decks.plane import plane_deck
 

@@ -416,6 +416,13 @@ def grade_plane(result: PlaneResult, scene: PlaneScene,
     if plane_stress:
         notes.insert(0, "plane stress (CPS elements): graded as plane strain with nu = 0 "
                         "(1/E* = 1/E1 + 1/E2, no out-of-plane stress)")
+    quadratic = {8, 10} & set(result.details.get("elements") or ())
+    if quadratic and -0.6 < metrics["pressure_integral_rel_err"] < -0.4:
+        notes.insert(0, "the nodal pressure integrates to about half the force: CalculiX "
+                        "2.20's CPRESS on quadratic 2-D elements (tr6, qu8) in node-to-surface "
+                        "contact is halved and alternates between corner and mid-side nodes "
+                        "(measured on a CPE8 run; its contact forces are right); grade a run "
+                        "of linear elements (CPE4, CAX4)")
     notes = [f"Hertz's range: {'b' if key == 'half_width' else 'a'}/R = {ratio:.3g} (R the "
              f"smallest radius in the plane, {scene.smallest_radius:.6g} m)", *notes]
     return PlaneGrade(

@@ -17,7 +17,9 @@ the .frd on the 2-D mesh (tr3, tr6, qu4, qu8; z = 0).  What is read:
   slave surface is the one whose radius (fitted to its undeformed contact line) is
   closer to the scene's (``radii``: body 1's, body 2's);
 * **force**: the sum of ``F2`` (the FORC set: reactions at the constrained nodes) over body
-  1's nodes; body 2's is the independent ``reaction``.  Plane strain: divided by the
+  1's nodes away from the contact (CalculiX's FORC also holds the contact forces at the
+  slave nodes: the contact line's nodes and those within twice its pressed width are left
+  out); body 2's is the independent ``reaction``.  Plane strain: divided by the
   section's thickness (``*SOLID SECTION`` data line, default 1) and doubled for a half
   model (every node at x >= 0): the force per unit length of the whole contact.
   Axisymmetric: **CalculiX 2.20's .frd holds the reactions of the full circle** (verified:
@@ -25,7 +27,9 @@ the .frd on the 2-D mesh (tr3, tr6, qu4, qu8; z = 0).  What is read:
   tests/data/calculix_plane/cax_rod; the ``*NODE PRINT ... TOTALS`` of the .dat give the
   expanded 2-degree sector, pi / 180);
 * **stresses**: the nodal ``STRESS`` set (with SZZ, the out-of-plane or hoop stress) at the
-  nodes on the axis below the first point of contact (x = its x), per body;
+  nodes on the axis below the first point of contact (x = its x), per body; where no node
+  column lies on the axis (an unstructured whole model), interpolated onto it (linear, on
+  the Delaunay triangles of the nodes near it);
 * **units**: ``units`` (default mm, N, MPa, as the 3-D reader).
 """
 
@@ -127,6 +131,33 @@ def _slave_nodes(frd, inp, contact, source: str) -> tuple[np.ndarray, str]:
     return np.unique(contact.nodes[some]), "the nodes with contact output (no deck)"
 
 
+def _finite(values, nodes, block: str, component: str, source: str) -> None:
+    """Refuse a NaN or infinity in a result the grade uses, naming the first node."""
+    bad = ~np.isfinite(np.asarray(values, dtype=float))
+    if bad.any():
+        raise ResultError(f"{source}: {block} {component} is not a finite number at node "
+                          f"{int(np.asarray(nodes)[bad][0])} ({int(bad.sum())} node(s))")
+
+
+def _axis_interpolated(xy, vm, x0: float, y0: float, width: float):
+    """The von Mises stress along the axis x = x0 of one body, linearly interpolated
+    (Delaunay of its nodes within 0.3 contact half-widths of the axis and 4 deep) at steps
+    of the mesh's spacing there; None where too few nodes."""
+    band = (np.abs(xy[:, 0] - x0) <= 0.3 * width) & (np.abs(xy[:, 1] - y0) <= 4 * width)
+    if band.sum() < 8 or np.ptp(xy[band, 0]) <= 0:
+        return None
+    from scipy.interpolate import LinearNDInterpolator
+
+    pts = xy[band]
+    depth = np.abs(pts[:, 1] - y0)
+    spacing = math.sqrt(np.ptp(pts[:, 0]) * max(float(depth.max()), 1e-300) / band.sum())
+    z = np.arange(0.0, float(depth.max()), spacing)
+    sign = 1.0 if float(np.mean(pts[:, 1] - y0)) > 0 else -1.0
+    values = LinearNDInterpolator(pts, vm[band])(np.full_like(z, x0), y0 + sign * z)
+    ok = np.isfinite(values)
+    return AxisStress(z[ok], values[ok]) if ok.sum() >= 5 else None
+
+
 def read_calculix_plane(path, *, model: str | None = None, inp=None, units: str | None = None,
                         radii: tuple[float, float] | None = None, force: float | None = None,
                         body1: str | None = None) -> PlaneResult:
@@ -198,6 +229,7 @@ def read_calculix_plane(path, *, model: str | None = None, inp=None, units: str 
     except KeyError as exc:
         raise ResultError(f"{source}: no contact pressure: {exc.args[0]} (request it with "
                           f"*CONTACT FILE, CSTR)") from None
+    _finite(pressure_all, contact.nodes, "CONTACT", "CPRESS", source)
     slaves, how = _slave_nodes(frd, inp, contact, source)
     p_of = dict(zip(contact.nodes.tolist(), pressure_all.tolist(), strict=True))
     pos = frd.node_index(slaves)
@@ -215,6 +247,11 @@ def read_calculix_plane(path, *, model: str | None = None, inp=None, units: str 
         x0 = 0.0
     else:
         x0 = float(np.sum(p * xy[:, 0]) / p.sum())
+        # a whole model: the axis through the node column nearest the pressure's centroid
+        # (where the stresses on the axis are), if one is within 2% of the contact's width
+        near_x = float(xy[np.argmin(np.abs(xy[:, 0] - x0)), 0])
+        if abs(near_x - x0) <= 0.01 * float(np.ptp(xy[p > 0, 0])):
+            x0 = near_x
     on = p > 0
     spread = np.ptp(xy[on], axis=0) if on.sum() > 1 else np.zeros(2)
     if spread[1] > spread[0]:
@@ -244,14 +281,15 @@ def read_calculix_plane(path, *, model: str | None = None, inp=None, units: str 
         curvature = (2 * side * np.sum((xy[sel, 1] - y0) * r[sel] ** 2) / np.sum(r[sel] ** 4)
                      if sel.any() else 0.0)
         k1, k2 = (1 / radii[0], 1 / radii[1])
-        if abs(curvature - k2) < abs(curvature - k1):
-            slave_body = 2 if slave_body == 1 else 1
+        # the slave's body is body 1 where its contact line's curvature is closer to body
+        # 1's (the connected parts come in the mesh's order, which says nothing)
+        want = 1 if abs(curvature - k1) <= abs(curvature - k2) else 2
+        if want != slave_body:
+            slave_body = want
             masks = masks[::-1]
             node_body = {n: 3 - b for n, b in node_body.items()}
             centre = {1: centre[2], 2: centre[1]}
-            told += "; body 1 the one whose contact line's radius is closer to the scene's"
-        else:
-            told += "; body 1 the one whose contact line's radius is closer to the scene's"
+        told += "; body 1 the one whose contact line's radius is closer to the scene's"
     # the force: the reactions (F2) of each body's constrained nodes
     try:
         forc = frd.result("FORC")
@@ -259,10 +297,17 @@ def read_calculix_plane(path, *, model: str | None = None, inp=None, units: str 
     except KeyError as exc:
         raise ResultError(f"{source}: no reaction forces: {exc.args[0]} (request them with "
                           f"*NODE FILE, RF)") from None
+    # CalculiX's FORC holds the contact forces at the slave nodes too: the nodes of the
+    # contact line and those within twice its pressed width of it are left out
+    _finite(f2, forc.nodes, "FORC", "F2", source)
     sums = {1: 0.0, 2: 0.0}
-    for n, f in zip(forc.nodes.tolist(), f2.tolist(), strict=True):
+    reach = 2.0 * max(float(np.ptp(xy[p > 0, 0])), tol)
+    fxy = frd.coordinates[frd.node_index(forc.nodes), :2] * to_m
+    away = np.hypot(fxy[:, 0] - x0, fxy[:, 1] - y0) > reach
+    away &= ~np.isin(forc.nodes, slaves)
+    for n, f, keep in zip(forc.nodes.tolist(), f2.tolist(), away.tolist(), strict=True):
         b = node_body.get(int(n))
-        if b is not None:
+        if b is not None and keep:
             sums[b] += f
     factor = 1.0
     if model == "plane-strain":
@@ -281,7 +326,7 @@ def read_calculix_plane(path, *, model: str | None = None, inp=None, units: str 
                           f"the force of a displacement-controlled run is its support's "
                           f"reaction")
     # the stresses on the axis
-    axis = {}
+    axis, details_axis = {}, None
     try:
         stress = frd.result("STRESS")
     except KeyError:
@@ -291,19 +336,32 @@ def read_calculix_plane(path, *, model: str | None = None, inp=None, units: str 
 
         xs = frd.coordinates[frd.node_index(stress.nodes), :2] * to_m
         comps = [stress.component(c) for c in ("SXX", "SYY", "SZZ", "SXY", "SYZ", "SZX")]
+        for name, c in zip(("SXX", "SYY", "SZZ", "SXY", "SYZ", "SZX"), comps, strict=True):
+            _finite(c, stress.nodes, "STRESS", name, source)
         sxx, syy, szz, sxy, syz, szx = (np.asarray(c) * to_pa for c in comps)
         tensor = np.stack([np.stack([sxx, sxy, szx], -1), np.stack([sxy, syy, syz], -1),
                            np.stack([szx, syz, szz], -1)], -2)
         vm = von_mises(tensor)
-        on_axis = np.abs(xs[:, 0] - x0) <= max(tol, 1e-6 * scale)
+        offset = np.abs(xs[:, 0] - x0)
+        width = float(np.abs(xy[p > 0, 0] - x0).max())
         for b in (1, 2):
             mine = np.array([node_body.get(int(n)) == b for n in stress.nodes])
             sign = 1.0 if centre[b] > y0 else -1.0
-            sel = on_axis & mine & (sign * (xs[:, 1] - y0) >= 0)
+            below = mine & (sign * (xs[:, 1] - y0) >= 0)
+            sel = below & (offset <= max(tol, 1e-6 * scale))
             if sel.sum() >= 5:
                 axis[b] = AxisStress(np.abs(xs[sel, 1] - y0), vm[sel])
+            else:  # an unstructured mesh: no node column on the axis
+                line = _axis_interpolated(xs[below], vm[below], x0, y0, width)
+                if line is not None:
+                    axis[b] = line
+                    details_axis = "von Mises on the axis interpolated (no node column there)"
     x = (xy[:, 0] - x0)
-    details = {"reader": "calculix_plane", "units": units or "mm", "model": model,
+    if details_axis:
+        details_extra = {"axis stresses": details_axis}
+    else:
+        details_extra = {}
+    details = {**details_extra, "reader": "calculix_plane", "units": units or "mm", "model": model,
                "contact line": how, "bodies": told, "elements": sorted(types),
                "thickness": thickness, "half model": half if model == "plane-strain" else None,
                "force convention": ("per unit length: F2 sum / thickness"

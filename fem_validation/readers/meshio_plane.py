@@ -116,7 +116,7 @@ def read_meshio_plane(path, *, model: str, units: str | None = None,
     bad = np.flatnonzero(~np.isfinite(p))
     if bad.size:
         raise ResultError(f"{source}: field {name!r} is not finite at point {bad[0]}: "
-                          f"{p[bad[0]]!r}")
+                          f"{float(p[bad[0]])!r}")
     xy = points[:, :2] * length
     p = p * pressure_unit
     if not (p > 0).any():
