@@ -1,5 +1,5 @@
 """Review of the 2-D grades on CalculiX runs built by hand (tests/data/calculix_plane_hand:
-gmsh + numpy, build.py, not fem_validation's deck writer; .frd gzipped):
+gmsh + numpy, tools/make_plane_hand_runs.py, not fem_validation's deck writer; .frd gzipped):
 
 * roller: a WHOLE half-disc roller (R 10 mm) on a block 20 x 10 mm, plane strain, CPE4,
   one *MATERIAL for both bodies, the block's elements first, shuffled node numbers, a
