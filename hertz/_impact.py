@@ -406,9 +406,12 @@ def impact(body1, body2, speed, mass, angle=0.0) -> Impact:
     ref = _reference(body1, body2, angle)
     delta1 = np.asarray(ref.delta)  # the approach at 1 N: K = delta1**(-3/2)
     # delta_max = (5 M V^2 / (4 K))^(2/5) = (5 M V^2 / 4)^(2/5) delta1^(3/5)
-    with np.errstate(over="ignore"):
-        dmax = (1.25 * m * V * V * delta1 ** 1.5) ** 0.4
+    # as a product of powers: no overflow or underflow of M V^2 at extreme speeds and masses
+    with np.errstate(over="ignore", under="ignore"):
+        dmax = (1.25 * m) ** 0.4 * V ** 0.8 * delta1 ** 0.6
+    _representable(dmax, V, m, "a largest approach", "m")
     at_max = contact(body1, body2, approach=_out(dmax), angle=angle)
+    _representable(np.asarray(at_max.load, dtype=float), V, m, "a largest force", "N")
     shape = np.shape(at_max.delta)
     K = np.broadcast_to(delta1 ** -1.5, shape)
     V, m = np.broadcast_to(V, shape), np.broadcast_to(m, shape)
@@ -417,6 +420,18 @@ def impact(body1, body2, speed, mass, angle=0.0) -> Impact:
     duration = (2.0 * T1) * dmax / V
     return Impact(_out(V), _out(m), _out(K), _out(dmax), _out(fmax), _out(p0),
                   _out(duration), _out(np.ones(shape)), at_max)
+
+
+def _representable(x, V, m, what, unit):
+    """ValueError naming speed and mass where x is 0 or inf (beyond floating point)."""
+    shape = np.broadcast_shapes(np.shape(x), np.shape(V), np.shape(m))
+    ok = np.broadcast_to((x > 0) & (x < math.inf), shape).ravel()
+    if not np.all(ok):
+        k = first_failure(ok)
+        V, m, x = (np.broadcast_to(a, shape).ravel()[k] for a in (V, m, x))
+        raise ValueError(f"speed {float(V)!r} m/s and mass {float(m)!r} kg give {what} of "
+                         f"{float(x)!r} {unit}, beyond floating "
+                         f"point: check the units (SI: m/s, kg)")
 
 
 #: the fields of an Impact with their SI units (pint spelling), for pandas, xarray, pint
@@ -575,6 +590,10 @@ def _invert_tsuji_poly(target):
 
 
 _RTOL, _ATOL = 1e-13, 1e-16
+#: The largest nondimensional damping gamma the damped impact is integrated for (beyond
+#: it the restitution with the force cut off, (5/4)**2 / gamma**2 for Tsuji's law, is
+#: below 1e-12 and the integration loses it).
+MAX_GAMMA = 1e6
 #: The speed (in units of V) at which the integration leaves the variable u = x**(1/4).
 _SWITCH = 0.5
 #: Time (in units of delta_max / V) after which a contact that has not ended is taken as
@@ -743,6 +762,14 @@ def damped_impact(body1, body2, speed, mass, law, coefficient, cutoff=True,
     p, V, m, d0, ra, coef = _law_inputs(body1, body2, speed, mass, law, coefficient, angle,
                                         "coefficient")
     gamma = _gamma(law, coef, V, m, d0, ra)
+    ok = np.asarray(gamma <= MAX_GAMMA).reshape(-1)
+    if not np.all(ok):
+        k = first_failure(ok)
+        raise ValueError(f"coefficient {float(np.ravel(coef)[k])!r} of law {law!r} gives the "
+                         f"nondimensional damping gamma = {float(np.ravel(gamma)[k]):.4g}, "
+                         f"above {MAX_GAMMA:g}: a contact so overdamped that its "
+                         f"restitution (below 1e-12 cut off, 0 otherwise) is beyond what the "
+                         f"integration resolves; check the coefficient's units")
     e, tau, x = _solve_all(gamma, p, bool(cutoff))
     return DampedImpact(_out(e), _out(tau * d0 / V), _out(x * d0), _out(gamma))
 
@@ -777,9 +804,10 @@ def restitution(body1, body2, speed, mass, law, coefficient, cutoff=True, angle=
     poly(e) = 1.2728 - 4.2783 e + 11.087 e**2 - 22.348 e**3 + 27.467 e**4 - 18.022 e**5
     + 4.8218 e**6, in the releases up to the 22 Jul 2025 stable one (``lammps_tsuji``;
     measured with that release's ``lmp``), and alpha = sqrt(2) poly(e) in the development
-    sources since mid-2026 (``damp *= MY_SQRT2``: ``lammps_tsuji_sqrt2``); ``coeff_restitution`` is the damping of EDEM,
-    LIGGGHTS and Lethe (2 sqrt(5/6) beta sqrt(S_n M), S_n = 2 E* sqrt(R delta)), whose
-    restitution is close to, not equal to, the e it is given.
+    sources since mid-2026 (``damp *= MY_SQRT2``: ``lammps_tsuji_sqrt2``);
+    ``coeff_restitution`` is the damping of EDEM, LIGGGHTS and Lethe (2 sqrt(5/6) beta
+    sqrt(S_n M), S_n = 2 E* sqrt(R delta)), whose restitution is close to, not equal to,
+    the e it is given.
 
     With x = delta / delta_max (elastic) and tau = t V / delta_max each law is
     x'' = -(5/4) x**(3/2) - gamma x**p x' with one number gamma: eta delta_max / (M V)
@@ -814,6 +842,13 @@ def restitution(body1, body2, speed, mass, law, coefficient, cutoff=True, angle=
     float or ndarray
         The coefficient of restitution (rebound over approach speed), in [0, 1]; 0
         where the bodies never part.
+
+    Raises
+    ------
+    ValueError
+        An unknown law; a coefficient outside its range (naming it and its index); one
+        whose nondimensional damping gamma exceeds :data:`MAX_GAMMA` (a restitution
+        below 1e-12, beyond the integration's resolution).
 
     Examples
     --------

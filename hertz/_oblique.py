@@ -603,7 +603,10 @@ def _history(normal, kept, *, mu, c, vn, sign, m_t, lever, spin0):
     vt = sign * u * scale
     impulse = m_t * scale * sign * (u[0] - u)  # tangential impulse so far, on body 2
     spin = spin0 + lever * impulse  # lever = R1 / I1
-    arrays = [tau * dmax / vn, x * dmax, pmax * x ** 1.5, sign * mu * pmax * f,
+    time = tau * dmax / vn
+    if abs(time[-1] - normal.duration) <= 1e-12 * normal.duration:
+        time[-1] = normal.duration  # the end of the contact to the last bit (tau's rounding)
+    arrays = [time, x * dmax, pmax * x ** 1.5, sign * mu * pmax * f,
               sign * y * mu * c * dmax, vt, spin, sliding]
     for a in arrays:
         a.flags.writeable = False

@@ -1,8 +1,8 @@
 """Hand-built CalculiX 2-D Hertz runs, written as an analyst would (gmsh + numpy), not by
 fem_validation's deck writer nor tools/make_plane_runs.py.
 
-    python tools/make_plane_hand_runs.py plane DIR      # roller.inp: CPE4, node-to-surface, TYPE=NODE slave
-    python tools/make_plane_hand_runs.py axi DIR        # sphere.inp: CAX4, surface-to-surface
+    python tools/make_plane_hand_runs.py plane DIR  # roller.inp: CPE4, node-to-surface
+    python tools/make_plane_hand_runs.py axi DIR    # sphere.inp: CAX4, surface-to-surface
     cd DIR && OMP_NUM_THREADS=1 ccx -i roller      # (or sphere); about 4 s each
     gzip -9 roller.frd     # the committed runs: the same meshes, other node numbers
 

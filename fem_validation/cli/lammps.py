@@ -86,6 +86,10 @@ def add_arguments(p: argparse.ArgumentParser) -> None:
     p.add_argument("--damping", type=_damping, default=("none", 0.0), metavar="LAW:VALUE",
                    help=f"damping law and coefficient, LAW one of {', '.join(DAMPING)} "
                         f"(tsuji, coeff_restitution: VALUE is a restitution); default none")
+    p.add_argument("--damping-attractive", action="store_true",
+                   help="let the damping pull (LAMMPS's default; the deck otherwise writes "
+                        "limit_damping, the force cut off at 0); the grade command then "
+                        "has --damping-attractive")
     p.add_argument("--speed", type=positive, default=0.5, metavar="V",
                    help="impact: normal approach speed [m/s] (0.5; oblique: V tan(A) along "
                         "the wall)")
@@ -125,7 +129,8 @@ def run(args: argparse.Namespace) -> int:
                        kn=args.kn, normal=args.normal, ratio=args.ratio,
                        amplitude=args.amplitude, lift=args.lift,
                        damping=law, damping_value=value, speed=args.speed,
-                       angle_deg=args.angle_deg, density=args.density, steps=args.steps)
+                       angle_deg=args.angle_deg, density=args.density, steps=args.steps,
+                       attractive=args.damping_attractive)
     exe = None
     if args.run:
         exe = shutil.which(args.lmp)

@@ -477,9 +477,13 @@ def _orbit_move(knots, dt, mover, wall) -> list[str]:
 def _impact_values(scene, r1, r2, speed, angle_deg, density, steps) -> dict:
     """Mass, speeds, Hertz's contact time and the time step of an impact."""
     speed = _check("speed", speed, 0.0, 1000.0, "an impact speed [m/s]")
-    angle_deg = _check("angle_deg", angle_deg, -1.0, 89.999, "degrees from the normal")
-    if angle_deg < 0:
-        raise ValueError(f"angle_deg must be in [0, 90), got {angle_deg!r}")
+    try:
+        angle_deg = float(angle_deg)
+    except (TypeError, ValueError):
+        raise ValueError(f"angle_deg must be a number, got {angle_deg!r}") from None
+    if not 0.0 <= angle_deg <= 89.999:  # nan too
+        raise ValueError(f"angle_deg must be in [0, 89.999] (degrees from the normal), got "
+                         f"{angle_deg!r}")
     if angle_deg and r2 is not None:
         raise ValueError("an oblique impact needs a wall (body2 flat): the two-sphere impact "
                          "is head-on")

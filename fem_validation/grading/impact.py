@@ -284,7 +284,7 @@ def hertz_law(law: str, value: float) -> tuple[str, float, str]:
         known = getattr(hertz, "DAMPING_LAWS", None)
         if known is not None and law not in known:
             raise ValueError(f"damping: unknown law {law!r}; known: "
-                             f"{', '.join(sorted([*known, *LAMMPS_LAWS]))}")
+                             f"{', '.join(sorted({*known, *LAMMPS_LAWS}))}")
         return law, float(value), f"{law!r}, {value:g}"
     what, target, _ = LAMMPS_LAWS[law]
     if not (math.isfinite(value) and 0 < value <= 1):
@@ -338,6 +338,14 @@ def impact_reference(scene, mass: float, speed: float, *, damping=None, mu=None,
             raise ValueError(f"{name} must be a finite number > 0, got {value!r}")
     law = _damping(damping)
     elastic = _elastic(scene, mass, speed)
+    radii = [abs(float(r)) for b in (scene.body1, scene.body2) for r in (b.Rx, b.Ry)
+             if math.isfinite(float(r)) and float(r) != 0.0]
+    if not (math.isfinite(elastic.max_approach) and elastic.max_approach > 0.0
+            and elastic.max_approach < min(radii, default=math.inf)):
+        raise ValueError(f"mass {mass!r} kg and speed {speed!r} m/s give Hertz's largest "
+                         f"overlap {elastic.max_approach:.4g} m, not a small positive "
+                         f"fraction of the bodies' radius {min(radii, default=math.inf):g} m:"
+                         f" not a Hertz impact (check the units: kg, m/s)")
     if law is not None:
         ref = _damped(scene, mass, speed, law, cutoff, elastic)
     else:
@@ -392,6 +400,10 @@ def _damped(scene, mass, speed, law, cutoff, elastic) -> ImpactReference:
              else restitution(*args, cutoff=cutoff, angle=scene.angle))
     nan = math.nan
     e = float(getattr(r, "restitution", r))
+    if not math.isfinite(float(getattr(r, "duration", 0.0))):
+        raise ValueError(f"damping: {described} never lets the bodies part (restitution "
+                         f"{e:g}, no end of contact): no impact to grade; check the "
+                         f"coefficient {coefficient!r}")
     what = "hertz.damped_impact" if damped is not None else "hertz.restitution"
     return ImpactReference(float(getattr(r, "max_approach", nan)),
                            float(getattr(r, "max_force", nan)),
@@ -541,9 +553,16 @@ def measure(r: ImpactTrajectory, mass: float, attractive: bool = False) -> Measu
         raise ResultError(f"{r.where(i1)}: the record ends in contact (force {f[i1]:.6g} N): "
                           f"write rows until after the bodies part")
     if i1 - i0 + 1 < MIN_CONTACT_ROWS:
+        dip = ""
+        if d[i1 + 1] > 0 and on[i1 + 1:].any():  # the force dips to 0 inside the contact
+            k = i1 + 1
+            at = f"line {int(r.lines[k])}" if r.lines is not None else f"row {k}"
+            dip = (f"; the force is {f[k]:.6g} N at {at} with the overlap "
+                   f"still {d[k]:.6g} m, and positive again later: a contact is the rows "
+                   f"of positive force (a noisy or attractive force? --damping-attractive)")
         raise ResultError(f"{r.where(i0)}: only {i1 - i0 + 1} row(s) in contact; an impact is "
                           f"graded from {MIN_CONTACT_ROWS} or more (write every step of the "
-                          f"contact, or at least 20 rows of it)")
+                          f"contact, or at least 20 rows of it){dip}")
     if on[i1 + 1:].any():
         k = i1 + 1 + int(np.argmax(on[i1 + 1:]))
         notes.append(f"a second contact starts at {r.where(k)}; only the first is graded")
@@ -745,7 +764,7 @@ def grade_impact(r: ImpactTrajectory, ref: ImpactReference, *, mass: float, spee
 
     f_peak = fmax if math.isfinite(fmax) else ref.stiffness * dmax ** 1.5
     if math.isfinite(dmax) and math.isfinite(f_peak):
-        b_d = f_peak * dt * dt / (8.0 * mass * dmax)
+        b_d = (f_peak / mass) * (dt / dmax) * dt / 8.0  # no underflow of 8 M delta
         values["max_overlap_rel_err"] = m.max_overlap / dmax - 1.0
         tol["max_overlap_rel_err"] = FLOOR + b_d
         basis["max_overlap_rel_err"] = (f"{FLOOR:g} + F dt^2 / (8 M delta_max), F the force "
@@ -868,9 +887,14 @@ def _oblique(r, m, radius, ref, values, tol, basis, notes) -> dict:
     out = {"v_t_before": vt0, "v_t_after": vt1, "omega_before": w0, "omega_after": w1}
     rows = slice(i0 - 1, i1 + 2)
     normal_impulse = _trapezoid(r.normal_force[rows], r.t[rows])
+    tangential_impulse = sign * _trapezoid(r.tangential_force[rows], r.t[rows])
     if normal_impulse > 0:  # information: mu in gross slip
-        out["impulse_ratio"] = abs(_trapezoid(r.tangential_force[rows], r.t[rows])) \
-            / normal_impulse
+        out["impulse_ratio"] = abs(tangential_impulse) / normal_impulse
+    if tangential_impulse * (vt1 - vt0) < 0:  # the column is information only: say so
+        notes.append(f"oblique: the tangential_force column's impulse "
+                     f"({tangential_impulse:.4g} N s) has the opposite sign of body 1's "
+                     f"change of v_t ({vt1 - vt0:+.4g} m/s): it is not the force on body 1 "
+                     f"along v_t (the other body's, or the other sign); it is not graded")
     if radius is None:
         notes.append("oblique: body 1 is not a sphere; the contact point's velocity (v_t - R "
                      "omega) is not known, the oblique checks are not made")

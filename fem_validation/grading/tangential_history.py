@@ -423,6 +423,14 @@ def grade_history(history: TangentialHistory, scene, tolerances: Mapping[str, fl
     a_rows[touching] = np.atleast_1d(np.asarray(cs.a, dtype=float))[inverse]
     k_rows_t[touching] = 1.0 / np.atleast_1d(
         np.asarray(hertz.tangential_compliance(cs), dtype=float)[..., 0, 0])[inverse]
+    radii = [abs(float(r)) for b in (getattr(scene, "body1", None), getattr(scene, "body2", None))
+             if b is not None for r in (b.Rx, b.Ry) if math.isfinite(float(r)) and float(r) != 0]
+    too_big = np.flatnonzero(a_rows >= min(radii, default=math.inf))
+    if too_big.size:  # not a Hertz contact: a unit mistake or a corrupt row
+        i = int(too_big[0])
+        raise ResultError(f"{src}, {at(i)}: the normal force {p[i]:.6g} N gives a contact "
+                          f"radius a = {a_rows[i]:.4g} m, beyond the bodies' radius "
+                          f"{min(radii):.4g} m: not a Hertz contact (the force's unit?)")
     c_max, _ = hertz_quietly(hertz_at, p_max)
     k_max = 1.0 / float(hertz.tangential_compliance(c_max)[0, 0])
 

@@ -42,7 +42,11 @@ import numpy as np
 
 from .contact import ResultError
 
-__all__ = ["OBLIQUE_FIELDS", "ImpactTrajectory"]
+__all__ = ["MAX_ABS", "OBLIQUE_FIELDS", "ImpactTrajectory"]
+
+#: The largest magnitude a value may have in SI (no time, overlap, force, speed or spin of a
+#: DEM run comes near it; beyond it the grader's squares and powers would overflow).
+MAX_ABS = 1e100
 
 #: The fields an oblique impact adds (all three, or none).
 OBLIQUE_FIELDS = ("tangential_force", "v_t", "omega")
@@ -61,8 +65,13 @@ def _field(value, name: str, n: int | None, where) -> np.ndarray:
     bad = ~np.isfinite(a)
     if bad.any():
         k = int(np.argmax(bad))
-        raise ResultError(f"{where(k)}field {name!r} is {a[k]!r}: every value must be a "
-                          f"finite number ({int(bad.sum())} are not)")
+        raise ResultError(f"{where(k)}field {name!r} is {float(a[k])!r}: every value must "
+                          f"be a finite number ({int(bad.sum())} are not)")
+    big = np.abs(a) > MAX_ABS
+    if big.any():
+        k = int(np.argmax(big))
+        raise ResultError(f"{where(k)}field {name!r} is {float(a[k])!r}: every value must "
+                          f"lie within +-{MAX_ABS:g} (SI units)")
     a.flags.writeable = False
     return a
 
@@ -125,8 +134,8 @@ class ImpactTrajectory:
         steps = np.diff(t)
         if not (steps > 0).all():
             k = int(np.argmax(~(steps > 0))) + 1
-            raise ResultError(f"{where(k)}field 't' must increase strictly, got {t[k]!r} "
-                              f"after {t[k - 1]!r}")
+            raise ResultError(f"{where(k)}field 't' must increase strictly, got "
+                              f"{float(t[k])!r} after {float(t[k - 1])!r}")
         set_ = object.__setattr__
         set_(self, "t", t)
         set_(self, "lines", lines)

@@ -81,7 +81,7 @@ class TangentialHistory:
         bad = np.flatnonzero(p < 0)
         if bad.size:
             raise ResultError(f"{w}field 'normal_force' must be >= 0 (compressive), got "
-                              f"{p[bad[0]]!r} at {self.at(int(bad[0]))}")
+                              f"{float(p[bad[0]])!r} at {self.at(int(bad[0]))}")
         if not (p > 0).any():
             raise ResultError(f"{w}field 'normal_force' is 0 throughout: the bodies never "
                               f"touch")
