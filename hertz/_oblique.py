@@ -431,14 +431,14 @@ def oblique_impact(body1, body2, speed, incidence, mass, mu, *, mass2=math.inf,
 
     Examples
     --------
-    Chung & Ooi's alumina sphere (R 2.55 mm, E 380 GPa, nu 0.23, 4000 kg/m^3, mu 0.092)
+    Chung & Ooi's alumina sphere (R 2.5 mm, E 380 GPa, nu 0.23, 4000 kg/m^3, mu 0.092)
     on an alumina half-space at 3.9 m/s:
 
     >>> import math
     >>> import hertz
-    >>> ball = hertz.Body.sphere(2.55e-3, E=380e9, nu=0.23)
+    >>> ball = hertz.Body.sphere(2.5e-3, E=380e9, nu=0.23)
     >>> block = hertz.Body.plane(E=380e9, nu=0.23)
-    >>> m = 4000 * 4 / 3 * math.pi * 2.55e-3 ** 3
+    >>> m = 4000 * 4 / 3 * math.pi * 2.5e-3 ** 3
     >>> hit = hertz.oblique_impact(ball, block, 3.9, math.radians(45.0), m, 0.092)
     >>> bool(hit.gross_slip), round(hit.impulse_ratio, 12)
     (True, 0.092)

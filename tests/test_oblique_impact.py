@@ -20,7 +20,7 @@ import pytest
 import hertz
 from hertz._oblique import _normalised
 
-R, E, NU, RHO, MU, SPEED = 2.55e-3, 380e9, 0.23, 4000.0, 0.092, 3.9
+R, E, NU, RHO, MU, SPEED = 2.5e-3, 380e9, 0.23, 4000.0, 0.092, 3.9
 MASS = RHO * 4.0 / 3.0 * math.pi * R ** 3
 BALL = hertz.Body.sphere(R, E=E, nu=NU)
 BLOCK = hertz.Body.plane(E=E, nu=NU)

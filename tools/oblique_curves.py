@@ -22,7 +22,7 @@ import numpy as np
 import hertz
 from hertz._oblique import _gross_end, _nodes, _normalised
 
-R, E, NU, RHO, SPEED, MU = 2.55e-3, 380e9, 0.23, 4000.0, 3.9, 0.092
+R, E, NU, RHO, SPEED, MU = 2.5e-3, 380e9, 0.23, 4000.0, 3.9, 0.092
 
 
 def alumina():
