@@ -146,6 +146,16 @@ def _check_body_fields(Rx, Ry, E, nu) -> None:
         _require("nu", nu, (nu > -1) & (nu <= 0.5), _POISSON)
 
 
+def _poisson(E, nu):
+    """nu as given, or for a rigid body (every E inf) left out: 0 (it plays no part)."""
+    if nu is not None:
+        return nu
+    if np.all(np.asarray(E, dtype=float) == math.inf):
+        return 0.0
+    raise TypeError("nu (Poisson's ratio) is required for an elastic body; only a rigid "
+                    "body (E = inf) may leave it out")
+
+
 @dataclass(frozen=True, slots=True, init=False)
 class Body:
     """An elastic body near its contact point.
@@ -222,7 +232,7 @@ class Body:
         setter(self, "_scalar", scalar)
 
     @classmethod
-    def sphere(cls, R, E, nu) -> Body:
+    def sphere(cls, R, E, nu=None) -> Body:
         """A sphere (or a spherical cup) near its contact point.
 
         Parameters
@@ -233,7 +243,8 @@ class Body:
         E : float or array_like
             Young's modulus [Pa], positive (``inf``: rigid).
         nu : float or array_like
-            Poisson's ratio [-], in (-1, 0.5].
+            Poisson's ratio [-], in (-1, 0.5]; may be left out for a rigid body
+            (``E = inf``), whose Poisson's ratio plays no part.
 
         Returns
         -------
@@ -248,10 +259,10 @@ class Body:
         >>> hertz.Body.sphere([5e-3, -20e-3], E=210e9, nu=0.3).Rx  # a ball and a cup
         array([ 0.005, -0.02 ])
         """
-        return cls(R, R, E, nu)
+        return cls(R, R, E, _poisson(E, nu))
 
     @classmethod
-    def cylinder(cls, R, E, nu) -> Body:
+    def cylinder(cls, R, E, nu=None) -> Body:
         """A circular cylinder (or a cylindrical groove) near its contact point.
 
         The cylinder's axis lies along the body's own y axis: it is curved
@@ -268,7 +279,8 @@ class Body:
         E : float or array_like
             Young's modulus [Pa], positive (``inf``: rigid).
         nu : float or array_like
-            Poisson's ratio [-], in (-1, 0.5].
+            Poisson's ratio [-], in (-1, 0.5]; may be left out for a rigid body
+            (``E = inf``), whose Poisson's ratio plays no part.
 
         Returns
         -------
@@ -286,10 +298,10 @@ class Body:
         >>> print(f"a = b = {c.a * 1e3:.4f} mm")
         a = b = 0.1866 mm
         """
-        return cls(R, math.inf, E, nu)
+        return cls(R, math.inf, E, _poisson(E, nu))
 
     @classmethod
-    def plane(cls, E, nu) -> Body:
+    def plane(cls, E, nu=None) -> Body:
         """A flat surface: an elastic half-space.
 
         Parameters
@@ -297,7 +309,8 @@ class Body:
         E : float or array_like
             Young's modulus [Pa], positive (``inf``: rigid).
         nu : float or array_like
-            Poisson's ratio [-], in (-1, 0.5].
+            Poisson's ratio [-], in (-1, 0.5]; may be left out for a rigid body
+            (``E = inf``), whose Poisson's ratio plays no part.
 
         Returns
         -------
@@ -315,7 +328,7 @@ class Body:
         >>> print(f"{hertz.contact(ball, flat, load=10.0).p0 / 1e6:.1f} MPa")
         405.1 MPa
         """
-        return cls(math.inf, math.inf, E, nu)
+        return cls(math.inf, math.inf, E, _poisson(E, nu))
 
     @property
     def compliance(self):

@@ -269,3 +269,18 @@ def test_rigid_arrays_and_both_rigid_refused():
     with pytest.raises(ValueError, match=r"E must be a positive Young's modulus in Pa \(inf "
                                          r"for a rigid body\), got nan"):
         hertz.Body.plane(E=math.nan, nu=0.3)
+
+
+def test_a_rigid_wall_needs_no_poisson_ratio():
+    """Body.plane(E=inf), as a DEM user writes a wall: nu plays no part in E* = E/(1 - nu^2)
+    of the other body; an elastic body must still give nu."""
+    import math
+
+    wall = hertz.Body.plane(E=math.inf)
+    ball = hertz.Body.sphere(0.01, 70e9, 0.33)
+    c = hertz.contact(ball, wall, load=10.0)
+    e_star = 70e9 / (1 - 0.33 ** 2)
+    assert c.e_star == pytest.approx(e_star, rel=1e-15)
+    assert hertz.contact(ball, hertz.Body.plane(math.inf, 0.45), load=10.0).a == c.a
+    with pytest.raises(TypeError, match="nu .* is required for an elastic body"):
+        hertz.Body.sphere(0.01, 70e9)
