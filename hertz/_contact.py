@@ -1126,6 +1126,22 @@ def _cutoff(radius: float) -> float:
     return cut
 
 
+def _warn_counted(a, body1: Body, body2: Body, count: int, a_max: float,
+                  r_max: float) -> None:
+    """The warning for the ``count`` contacts the kernel found beyond the limit, naming the
+    one of the largest a/R, whose a and smallest |R| it reported: found by its a (one
+    comparison over the batch), its radii confirming it."""
+    shape = np.shape(a)
+    flat = np.asarray(a).reshape(-1)
+    radii = [np.broadcast_to(r, shape).reshape(-1) for r in
+             (body1.Rx, body1.Ry, body2.Rx, body2.Ry)]
+    candidates = np.flatnonzero(flat == a_max)
+    i = next((int(k) for k in candidates
+              if min(abs(float(r[k])) for r in radii) == r_max),
+             int(candidates[0]) if candidates.size else 0)
+    _warn_size(a, body1, body2, "a", shape, i, count)
+
+
 def _warn_size(a, body1: Body, body2: Body, axis: str, shape, i: int, count: int) -> None:
     """The HertzValidityWarning for ``count`` contacts of ``shape``, naming element i
     (the largest a/R)."""
@@ -1291,8 +1307,10 @@ def contact(body1: Body, body2: Body, load=None, angle=0.0, *, approach=None,
                 _ufuncs.beyond()  # the kernel counts the contacts beyond Hertz's validity
                 c = Contact(*fused(*args), _Deferred(geometry, shape),
                             (body1.nu, body2.nu, body1.E, body2.E))
-                if not _ufuncs.beyond():
-                    return c
+                count, a_max, r_max = _ufuncs.beyond()
+                if count:
+                    _warn_counted(c.a, body1, body2, count, a_max, r_max)
+                return c
         else:
             # One geometry carries many loads: solve each geometry once and
             # broadcast its fields (read-only views) over the loads.

@@ -513,20 +513,36 @@ partial_slip_block(ptrdiff_t n, const double *const *in, double *const *out, int
 #define HERTZ_THREAD_LOCAL _Thread_local
 #endif
 static HERTZ_THREAD_LOCAL Py_ssize_t beyond_count = 0;
+/* Among them, the largest a / min|R| and its a and min|R| (for the warning's message: the
+ * caller finds the element by its a) */
+static HERTZ_THREAD_LOCAL double beyond_ratio = -1.0, beyond_a = 0.0, beyond_r = 0.0;
 static double inverse_limit = 0.0; /* 0 until hertz._contact registers it: no check */
 static PyObject *warn_size = NULL; /* hertz._contact._check_size */
 
-static Py_ssize_t
+static void
 count_beyond(ptrdiff_t n, const double *const in[], const double *a)
 {
     const double inv = inverse_limit;
     Py_ssize_t count = 0;
-    for (ptrdiff_t i = 0; i < n; ++i) {
+    for (ptrdiff_t i = 0; i < n; ++i) { /* vectorised */
         double t = a[i] * inv;
         count += (fabs(in[0][i]) < t) | (fabs(in[1][i]) < t) | (fabs(in[2][i]) < t)
                  | (fabs(in[3][i]) < t);
     }
-    return count;
+    if (count == 0) {
+        return;
+    }
+    beyond_count += count;
+    for (ptrdiff_t i = 0; i < n; ++i) { /* a block that holds some: the largest ratio */
+        double r = fmin(fmin(fabs(in[0][i]), fabs(in[1][i])), fmin(fabs(in[2][i]),
+                                                                   fabs(in[3][i])));
+        double ratio = a[i] / r;
+        if (r < a[i] * inv && ratio > beyond_ratio) {
+            beyond_ratio = ratio;
+            beyond_a = a[i];
+            beyond_r = r;
+        }
+    }
 }
 
 /* Run `fn` over a strided ufunc call in blocks: contiguous operands are used
@@ -588,7 +604,7 @@ drive(char *const data[], npy_intp const dims[], npy_intp const steps[], int nin
             return -1;
         }
         if (check && inverse_limit > 0.0) {
-            beyond_count += count_beyond(n, in, out[HERTZ_OUT_A]);
+            count_beyond(n, in, out[HERTZ_OUT_A]);
         }
         for (int k = 0; k < nout; ++k) {
             int j = nin + k;
@@ -888,18 +904,21 @@ register_validity(PyObject *self, PyObject *args)
 }
 
 PyDoc_STRVAR(beyond_doc,
-"beyond() -> int\n\n"
+"beyond() -> (count, a, r)\n\n"
 "How many contacts the batch loops of this thread found beyond Hertz's validity\n"
-"since the last call (and reset the count).  Private: hertz.contact calls it.");
+"since the last call, and the a and smallest |R| of the one with the largest a/R\n"
+"(0.0, 0.0 when none); resets them.  Private: hertz.contact calls it.");
 
 static PyObject *
 beyond(PyObject *self, PyObject *unused)
 {
     (void)self;
     (void)unused;
-    Py_ssize_t count = beyond_count;
+    PyObject *out = Py_BuildValue("(ndd)", beyond_count, beyond_a, beyond_r);
     beyond_count = 0;
-    return PyLong_FromSsize_t(count);
+    beyond_ratio = -1.0;
+    beyond_a = beyond_r = 0.0;
+    return out;
 }
 
 PyDoc_STRVAR(contact_bodies_doc,

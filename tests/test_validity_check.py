@@ -46,13 +46,13 @@ def test_the_kernel_count_is_numpy_s_test_on_every_path(path):
         args = random_batch(50_001, 1)
         _ufuncs.beyond()
         out = _ufuncs.contact_load(*args)
-        count = _ufuncs.beyond()
+        count = _ufuncs.beyond()[0]
     finally:
         _ufuncs.path(before)
     expected = numpy_beyond(out[0], args[:4])
     assert 0 < expected < 50_001  # the batch straddles the limit
     assert count == expected
-    assert _ufuncs.beyond() == 0  # read and reset
+    assert _ufuncs.beyond() == (0, 0.0, 0.0)  # read and reset
 
 
 def test_the_count_is_exact_one_ulp_either_side_of_the_limit():
@@ -69,7 +69,7 @@ def test_the_count_is_exact_one_ulp_either_side_of_the_limit():
     args = [radii, radii, inf, inf, 0.0, 210e9, 0.3, 210e9, 0.3, np.full(3, 1e5)]
     _ufuncs.beyond()
     out = _ufuncs.contact_load(*args)
-    assert _ufuncs.beyond() == numpy_beyond(out[0], args[:4])
+    assert _ufuncs.beyond()[0] == numpy_beyond(out[0], args[:4])
     assert numpy_beyond(a, (radii,)) == 1  # only the radius one ulp below a * 3 is beyond
 
 
@@ -86,7 +86,7 @@ def test_each_thread_reads_its_own_count():
         for _ in range(20):
             _ufuncs.beyond()
             _ufuncs.contact_load(*batch)
-            total += _ufuncs.beyond()
+            total += _ufuncs.beyond()[0]
         counts[name] = total
 
     threads = [threading.Thread(target=work, args=("loud", args)),
@@ -122,3 +122,25 @@ def test_scalar_fast_path_declines_what_it_does_not_take():
     assert hertz.contact(ball, ball, 1).load == 1.0
     with pytest.raises(TypeError, match="body2 must be a hertz.Body"):
         hertz.contact(ball, "x", 1.0)
+
+
+def test_the_warning_names_the_largest_ratio_as_numpy_finds_it():
+    """The kernel reports the count and the a and |R| of the largest a/R; the message names
+    the same element, count and ratio as the elementwise numpy check."""
+    args = random_batch(30_000, 3)
+    rng = np.random.default_rng(4)
+    body1 = hertz.Body(args[0], args[1], 210e9, 0.3)
+    body2 = hertz.Body(args[2], args[3], 70e9, 0.33)
+    load = rng.uniform(1.0, 3000.0, 30_000)
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always")
+        c = hertz.contact(body1, body2, load=load, angle=args[4])
+    t = c.a * _contact._INVERSE_LIMIT
+    radii = np.abs(np.array(args[:4]))
+    beyond = (radii < t).any(axis=0)
+    ratio = np.where(beyond, c.a / radii.min(axis=0), -np.inf)
+    i = int(np.argmax(ratio))
+    assert len(caught) == 1
+    message = str(caught[0].message)
+    assert message.startswith(f"{int(beyond.sum())} of 30000 contacts have a semi-major axis")
+    assert f"a/R = {ratio[i]:.4g} at index {i} " in message
