@@ -266,19 +266,28 @@ def plot_grade(g, path: Path) -> Path:
     return path
 
 
-def write_grade(g, out: Path, command: str = "") -> tuple[Path, Path, Path]:
-    """DIR/grade.json, DIR/grade.md and DIR/grade.png of a Grade."""
+def write_grade_files(row: dict, out, command: str, markdown: str,
+                      plot) -> tuple[Path, Path, Path]:
+    """DIR/grade.json (``row`` and the command), DIR/grade.md (``markdown``) and
+    DIR/grade.png (``plot(path)``), DIR created: the three files of every grade type."""
     out = Path(out)
+    out.mkdir(parents=True, exist_ok=True)
     paths = out / "grade.json", out / "grade.md", out / "grade.png"
-    row = g.to_dict()
     if command:
         row["command"] = command
+    paths[0].write_text(grade_json(row))
+    paths[1].write_text(markdown)
+    plot(paths[2])
+    return paths
+
+
+def write_grade(g, out: Path, command: str = "") -> tuple[Path, Path, Path]:
+    """DIR/grade.json, DIR/grade.md and DIR/grade.png of a Grade."""
+    row = g.to_dict()
     if g.details.get("kind") == "force-approach":
         row["fem"] = {k: (v.tolist() if hasattr(v, "tolist") else v) for k, v in g.fem.items()}
-    paths[0].write_text(grade_json(row))
-    paths[1].write_text(grade_markdown(g, command))
-    plot_grade(g, paths[2])
-    return paths
+    return write_grade_files(row, out, command, grade_markdown(g, command),
+                             lambda path: plot_grade(g, path))
 
 
 def series_markdown(s, grades, command: str = "") -> str:
@@ -352,14 +361,8 @@ def plot_series(s, path: Path) -> Path:
 def write_series(s, grades, out: Path, command: str = "") -> tuple[Path, Path, Path]:
     """DIR/grade.json, DIR/grade.md and DIR/grade.png of a mesh series
     (:class:`fem_validation.grading.series.Series`), each mesh's grade in grade.json."""
-    out = Path(out)
-    paths = out / "grade.json", out / "grade.md", out / "grade.png"
     row = s.to_dict()
     row["passed_all"] = all(s.passed)
     row["grades"] = [{k: v for k, v in g.to_dict().items() if k != "stress"} for g in grades]
-    if command:
-        row["command"] = command
-    paths[0].write_text(grade_json(row))
-    paths[1].write_text(series_markdown(s, grades, command))
-    plot_series(s, paths[2])
-    return paths
+    return write_grade_files(row, out, command, series_markdown(s, grades, command),
+                             lambda path: plot_series(s, path))

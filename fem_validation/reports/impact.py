@@ -9,7 +9,7 @@ from pathlib import Path
 import numpy as np
 
 from ..grading.impact import METRICS
-from .grade import figure_title, grade_json, plot_checks, quiet_figure
+from .grade import figure_title, plot_checks, quiet_figure, write_grade_files
 
 __all__ = ["impact_markdown", "plot_impact", "write_impact_grade"]
 
@@ -156,12 +156,5 @@ def plot_impact(g, path: Path) -> Path:
 
 def write_impact_grade(g, out: Path, command: str = "") -> tuple[Path, Path, Path]:
     """DIR/grade.json, DIR/grade.md and DIR/grade.png of an ImpactGrade."""
-    out = Path(out)
-    paths = out / "grade.json", out / "grade.md", out / "grade.png"
-    row = g.to_dict()
-    if command:
-        row["command"] = command
-    paths[0].write_text(grade_json(row))
-    paths[1].write_text(impact_markdown(g, command))
-    plot_impact(g, paths[2])
-    return paths
+    return write_grade_files(g.to_dict(), out, command, impact_markdown(g, command),
+                             lambda path: plot_impact(g, path))

@@ -11,10 +11,10 @@ from .grade import (
     SIGN_CONVENTION,
     checks_table,
     figure_title,
-    grade_json,
     plot_checks,
     quiet_figure,
     source_name,
+    write_grade_files,
 )
 
 __all__ = ["plane_markdown", "plot_plane", "write_plane_grade"]
@@ -112,12 +112,5 @@ def plot_plane(g, path: Path) -> Path:
 
 def write_plane_grade(g, out: Path, command: str = "") -> tuple[Path, Path, Path]:
     """DIR/grade.json, DIR/grade.md and DIR/grade.png of a PlaneGrade."""
-    out = Path(out)
-    paths = out / "grade.json", out / "grade.md", out / "grade.png"
-    row = g.to_dict()
-    if command:
-        row["command"] = command
-    paths[0].write_text(grade_json(row))
-    paths[1].write_text(plane_markdown(g, command))
-    plot_plane(g, paths[2])
-    return paths
+    return write_grade_files(g.to_dict(), out, command, plane_markdown(g, command),
+                             lambda path: plot_plane(g, path))

@@ -192,15 +192,7 @@ def plot_grade(g: HistoryGrade, path: Path) -> Path:
 
 def write_grade(g: HistoryGrade, out, command: str = "") -> tuple[Path, Path, Path]:
     """DIR/grade.json, DIR/grade.md and DIR/grade.png of a HistoryGrade (DIR created)."""
-    from .grade import grade_json
+    from .grade import write_grade_files
 
-    out = Path(out)
-    out.mkdir(parents=True, exist_ok=True)
-    paths = out / "grade.json", out / "grade.md", out / "grade.png"
-    row = g.to_dict()
-    if command:
-        row["command"] = command
-    paths[0].write_text(grade_json(row))
-    paths[1].write_text(grade_markdown(g, command))
-    plot_grade(g, paths[2])
-    return paths
+    return write_grade_files(g.to_dict(), out, command, grade_markdown(g, command),
+                             lambda path: plot_grade(g, path))
