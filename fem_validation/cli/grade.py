@@ -227,7 +227,7 @@ def run(argv: list[str]) -> int:
     if args.impact is not None:  # --impact
         from .grade_impact import run as run_impact
 
-        return run_impact(args, argv)
+        return run_impact(args, argv, tolerances_from)
     from .grade_series import run_series, series_mode  # --series RUN1 RUN2 ...
 
     if series_mode(args):

@@ -16,11 +16,9 @@ one fails, 2 for bad input (one line), 3 for an internal error.
 from __future__ import annotations
 
 import math
-import tomllib
 import warnings
 from pathlib import Path
 
-from ..limits import read_small_text
 from .common import UsageError, finite, out_dir, positive, require
 
 __all__ = ["add_arguments", "run"]
@@ -58,50 +56,16 @@ def add_arguments(p) -> None:
                    help="incidence of an oblique impact from the normal [deg] (with --mu)")
 
 
-def _tolerances(args, metrics) -> dict:
-    tol = {}
-    if args.tolerances is not None:
-        text = read_small_text(args.tolerances, "tolerances file")
-        try:
-            table = tomllib.loads(text)
-        except (tomllib.TOMLDecodeError, RecursionError, ValueError) as exc:
-            raise UsageError(f"tolerances file {str(args.tolerances)!r} cannot be read as "
-                             f"TOML: {exc}") from None
-        for name, value in table.items():
-            if isinstance(value, bool) or not isinstance(value, int | float):
-                raise UsageError(f"tolerances file {str(args.tolerances)!r}: {name} must be a "
-                                 f"number, got {value!r}")
-            tol[name] = value
-    for item in args.tolerance:
-        name, sep, value = item.partition("=")
-        try:
-            tol[name.strip()] = float(value)
-        except ValueError:
-            raise UsageError(f"--tolerance {item!r}: expected NAME=VALUE with a number") from None
-        if not sep:
-            raise UsageError(f"--tolerance {item!r}: expected NAME=VALUE")
-    for name, value in tol.items():
-        if name not in metrics:
-            raise UsageError(f"tolerance {name!r}: unknown metric for --impact; known: "
-                             f"{', '.join(sorted(metrics))}")
-        try:
-            ok = math.isfinite(value) and value > 0
-        except OverflowError:
-            ok = False
-        if not ok:
-            raise UsageError(f"tolerance {name}: must be a finite number > 0, got {value!r}")
-        tol[name] = float(value)
-    return tol
-
-
 def _radius(scene) -> float | None:
     """Body 1's radius where it is a sphere (the rebound angle of the contact point)."""
     b = scene.body1
     return float(b.Rx) if b.Rx == b.Ry and math.isfinite(b.Rx) and b.Rx > 0 else None
 
 
-def run(args, argv) -> int:
-    """Grade ``args.impact``; return the exit status (errors are raised as ValueError)."""
+def run(args, argv, tolerances_from) -> int:
+    """Grade ``args.impact``; return the exit status (errors are raised as ValueError).
+    ``tolerances_from`` is grade.py's reader of --tolerance and --tolerances (passed in:
+    grade.py imports this module)."""
     other = {"RESULT": args.result, "--force-approach": args.force_approach,
              "--tangential": args.tangential, "--history": getattr(args, "history", None)}
     given = [k for k, v in other.items() if v is not None]
@@ -124,7 +88,7 @@ def run(args, argv) -> int:
     from ..reports.impact import write_impact_grade
     from ..scenes import scene_from_toml
 
-    tol = _tolerances(args, METRICS)
+    tol = tolerances_from(args, {}, METRICS)
     require(["matplotlib", "scipy"], "grade --impact (its grade.png, the reference)")
     out = out_dir(args.out, args.overwrite, GRADE_FILES)
     import hertz
