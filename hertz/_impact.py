@@ -781,18 +781,18 @@ def restitution(body1, body2, speed, mass, law, coefficient, cutoff=True, angle=
     delta the approach (overlap), delta' its rate (> 0 approaching), K the Hertz
     coefficient (:attr:`Impact.stiffness_coefficient`), M the reduced mass and c:
 
-    ===================== ============================================ ===================
-    law                   c(delta)                                      coefficient
-    ===================== ============================================ ===================
-    ``velocity``          eta                                           eta [N s/m]
-    ``mass_velocity``     eta0 M                                        eta0 [1/s]
-    ``viscoelastic``      eta0 M a, a = sqrt(a_x a_y) (sqrt(R delta))   eta0 [1/(m s)]
-    ``kuwabara_kono``     (3/2) A K delta**(1/2)                        A [s]
-    ``tsuji``             alpha sqrt(M K) delta**(1/4)                  alpha [-]
-    ``coeff_restitution`` alpha = -sqrt(5) ln e / sqrt(pi^2 + ln^2 e)   e (LAMMPS's) [-]
-    ``lammps_tsuji``      alpha = poly(e) (LAMMPS's Tsuji, stable)      e (LAMMPS's) [-]
-    ``lammps_tsuji_sqrt2`` alpha = sqrt(2) poly(e) (LAMMPS development)  e (LAMMPS's) [-]
-    ===================== ============================================ ===================
+    ======================= ============================================= ================
+    law                     c(delta)                                      coefficient
+    ======================= ============================================= ================
+    ``velocity``            eta                                           eta [N s/m]
+    ``mass_velocity``       eta0 M                                        eta0 [1/s]
+    ``viscoelastic``        eta0 M a, a = sqrt(a_x a_y) (sqrt(R delta))   eta0 [1/(m s)]
+    ``kuwabara_kono``       (3/2) A K delta**(1/2)                        A [s]
+    ``tsuji``               alpha sqrt(M K) delta**(1/4)                  alpha [-]
+    ``coeff_restitution``   alpha = -sqrt(5) ln e / sqrt(pi^2 + ln^2 e)   e (LAMMPS's) [-]
+    ``lammps_tsuji``        alpha = poly(e) (LAMMPS's Tsuji, stable)      e (LAMMPS's) [-]
+    ``lammps_tsuji_sqrt2``  alpha = sqrt(2) poly(e) (LAMMPS development)  e (LAMMPS's) [-]
+    ======================= ============================================= ================
 
     The first three, ``tsuji`` and ``coeff_restitution`` are LAMMPS ``pair_style
     granular``'s ``damping`` options with ``hertz/material`` (``velocity``,
