@@ -1086,7 +1086,8 @@ def grade(result: ContactResult, scene, tolerances: Mapping[str, float] | None =
     else:
         p = np.divide(f, area, out=np.zeros_like(f), where=area > 0)
     # a circle (Hertz's a = b) is fitted with one radius: a and b are one quantity
-    circular = abs(float(c.a) - float(c.b)) <= 1e-9 * float(c.a)
+    # (decided by the geometry, alpha = 1, as the axis angle is: not by the reference's a, b)
+    circular = float(c.alpha) < 1 + 1e-9
     moments2d, fit2d = moment_ellipse(xy, f, symmetric), fit_ellipse(xy, p)
     moments = moment_ellipse(xy, f, symmetric, True) if circular else moments2d
     fit = fit_ellipse(xy, p, True) if circular else fit2d
