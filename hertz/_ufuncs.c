@@ -533,15 +533,27 @@ count_beyond(ptrdiff_t n, const double *const in[], const double *a)
         return;
     }
     beyond_count += count;
-    for (ptrdiff_t i = 0; i < n; ++i) { /* a block that holds some: the largest ratio */
-        double r = fmin(fmin(fabs(in[0][i]), fabs(in[1][i])), fmin(fabs(in[2][i]),
-                                                                   fabs(in[3][i])));
-        double ratio = a[i] / r;
-        if (r < a[i] * inv && ratio > beyond_ratio) {
-            beyond_ratio = ratio;
-            beyond_a = a[i];
-            beyond_r = r;
+    double ratio[HERTZ_BLOCK]; /* a block that holds some: a/R where beyond, else -1 */
+    for (ptrdiff_t i = 0; i < n; ++i) { /* vectorised (radii: never NaN) */
+        double t = a[i] * inv, r0 = fabs(in[0][i]), r1 = fabs(in[1][i]),
+               r2 = fabs(in[2][i]), r3 = fabs(in[3][i]);
+        double r01 = r0 < r1 ? r0 : r1, r23 = r2 < r3 ? r2 : r3;
+        double r = r01 < r23 ? r01 : r23;
+        ratio[i] = r < t ? a[i] / r : -1.0;
+    }
+    ptrdiff_t at = -1;
+    for (ptrdiff_t i = 0; i < n; ++i) { /* the first of the largest */
+        if (ratio[i] > beyond_ratio) {
+            beyond_ratio = ratio[i];
+            at = i;
         }
+    }
+    if (at >= 0) {
+        double r0 = fabs(in[0][at]), r1 = fabs(in[1][at]), r2 = fabs(in[2][at]),
+               r3 = fabs(in[3][at]);
+        double r01 = r0 < r1 ? r0 : r1, r23 = r2 < r3 ? r2 : r3;
+        beyond_a = a[at];
+        beyond_r = r01 < r23 ? r01 : r23;
     }
 }
 
