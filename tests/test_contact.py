@@ -224,7 +224,8 @@ def test_no_hertz_contact(b1, b2, match):
 @pytest.mark.parametrize("kwargs, match", [
     (dict(Rx=0.0, Ry=1.0, E=1e9, nu=0.3), r"Rx must be a nonzero radius.*got 0\.0"),
     (dict(Rx=1.0, Ry=np.nan, E=1e9, nu=0.3), r"Ry must be a nonzero radius.*got nan"),
-    (dict(Rx=1.0, Ry=1.0, E=0.0, nu=0.3), r"E must be a positive Young's modulus in Pa \(inf for a rigid"),
+    (dict(Rx=1.0, Ry=1.0, E=0.0, nu=0.3),
+     r"E must be a positive Young's modulus in Pa \(inf for a rigid"),
     (dict(Rx=1.0, Ry=1.0, E=-1e9, nu=0.3), r"E must be .*got -1000000000\.0"),
     (dict(Rx=1.0, Ry=1.0, E=-np.inf, nu=0.3), r"E must be .*got -inf"),
     (dict(Rx=1.0, Ry=1.0, E=np.nan, nu=0.3), r"E must be .*got nan"),

@@ -90,8 +90,8 @@ def test_a_concave_radius_as_written_gives_hertz_contact(capsys):
 @pytest.mark.parametrize("argv, message", [
     (["--r2x", "-inf"], None),  # -inf is a flat surface, as inf
     (["--load", "-inf"], "load must be a finite value >= 0 in N, got -inf"),
-    (["--e1", "-inf"], "body1: E must be a positive Young's modulus in Pa (inf for a rigid body), got "
-               "-inf"),
+    (["--e1", "-inf"], "body1: E must be a positive Young's modulus in Pa (inf for a rigid "
+                       "body), got -inf"),
     (["--angle-deg", "-inf"], "--angle-deg (scene key angle_deg) must be a finite angle in "
                               "degrees, got -inf"),
     (["--load", "-5e"], "argument --load: not a number: '-5e'"),
