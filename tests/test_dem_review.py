@@ -387,3 +387,25 @@ def test_lammps_deck_cli_damping_attractive(tmp_path, capsys):
     assert main(argv + ["--out", str(tmp_path / "b")]) == 0
     assert "--damping-attractive" not in capsys.readouterr().out
     assert "limit_damping" in (tmp_path / "b" / "in.lammps").read_text()
+
+
+def test_a_whitespace_separated_trajectory_reads_as_a_csv(tmp_path):
+    """numpy.savetxt's default (spaces), as a DEM user writes a trajectory: read like the
+    comma-separated file, the same numbers."""
+    from fem_validation.readers.csv_file import read_table
+
+    rows = [(0.0, 0.0, 0.0), (1e-6, 2e-7, 3.5), (2e-6, 3e-7, 6.25)]
+    spaced = tmp_path / "spaced.txt"
+    spaced.write_text("t  overlap   normal_force\n"
+                      + "".join(f"{a:.6e} {b:.6e}   {c:.6e}\n" for a, b, c in rows))
+    commas = tmp_path / "commas.csv"
+    commas.write_text("t,overlap,normal_force\n"
+                      + "".join(f"{a:.6e},{b:.6e},{c:.6e}\n" for a, b, c in rows))
+
+    def choose(t):
+        return [(name, t.find([name], name, "column")) for name in ("t", "overlap",
+                                                                      "normal_force")]
+
+    a, b = read_table(spaced, choose), read_table(commas, choose)
+    assert a.labels == b.labels == ["t", "overlap", "normal_force"]
+    np.testing.assert_array_equal(a.values, b.values)

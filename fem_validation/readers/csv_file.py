@@ -323,13 +323,23 @@ class Table:
         return value
 
 
+#: The separator of a table whose header holds no comma, semicolon or tab but two or more
+#: names apart: runs of spaces (numpy.savetxt's default, Fortran and C printf output).
+WHITESPACE = " "
+
+
 def _delimiter(line: str) -> str:
-    """The header row's separator: the most frequent of comma, semicolon and tab."""
+    """The header row's separator: the most frequent of comma, semicolon and tab, else
+    whitespace where the row holds two or more names."""
     counts = {d: line.count(d) for d in (",", ";", "\t")}
+    if not any(counts.values()) and len(line.split()) >= 2:
+        return WHITESPACE
     return max(counts, key=lambda d: (counts[d], d == ","))
 
 
 def _cells(line: str, delimiter: str, where) -> list[str]:
+    if delimiter == WHITESPACE:
+        return line.split()
     if '"' not in line:
         return line.split(delimiter)
     try:
