@@ -123,7 +123,7 @@ import numpy as np
 
 from . import _interop
 from ._contact import contact as _contact
-from ._tangential import _mu, _selection, dundurs_beta, tangential_stiffness
+from ._tangential import _batch_shape, _mu, _selection, dundurs_beta, tangential_stiffness
 from ._validate import as_float_array, error_at, first_failure, index_text
 
 __all__ = ["LoadPath", "LoadPathSpring", "load_path"]
@@ -835,17 +835,8 @@ def _tolerance(delta1, alpha1):
 
 
 def _shape_of(*arrays, size=None):
-    shape = np.broadcast_shapes(*(np.shape(a) for a in arrays))
-    if size is None:
-        return shape
-    if isinstance(size, bool) or not isinstance(size, (int, np.integer)) or size < 0:
-        raise ValueError(f"size must be a non-negative int (the number of contacts), got "
-                         f"{size!r}")
-    try:
-        return np.broadcast_shapes(shape, (int(size),))
-    except ValueError:
-        raise ValueError(f"size = {size!r} contacts does not broadcast with the contacts' "
-                         f"shape {shape}") from None
+    """The batch's shape: the arrays' broadcast with (size,) if size is given."""
+    return _batch_shape(np.broadcast_shapes(*(np.shape(a) for a in arrays)), size)
 
 
 class LoadPathSpring:

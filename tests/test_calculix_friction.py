@@ -34,19 +34,8 @@ needs_ccx = pytest.mark.skipif(CCX is None, reason="ccx (CalculiX, Debian packag
 
 #: Two steel spheres R = 10 mm at 830.77 N (Hertz a = 0.3 mm): elastically similar bodies,
 #: so Mindlin's uncoupled solution is the exact reference.
-SPHERES = """name = "two steel spheres R 10 mm, 830.77 N"
-load = 830.7692307692308
-[body1]
-Rx = 0.01
-Ry = 0.01
-E = 210e9
-nu = 0.3
-[body2]
-Rx = 0.01
-Ry = 0.01
-E = 210e9
-nu = 0.3
-"""
+SPHERES = (Path(__file__).resolve().parents[1] / "scenes" / "calculix"
+           / "two-steel-spheres.toml").read_text()
 E, NU, R, LOAD = 210e9, 0.3, 0.01, 830.7692307692308
 
 

@@ -12,6 +12,7 @@ from __future__ import annotations
 
 import math
 import re
+from pathlib import Path
 
 import numpy as np
 import pytest
@@ -19,19 +20,8 @@ from fem_extra import require
 
 require("skfem", "gmsh", "scipy")
 
-SPHERES = """name = "two steel spheres R 10 mm, 830.77 N"
-load = 830.7692307692308
-[body1]
-Rx = 0.01
-Ry = 0.01
-E = 210e9
-nu = 0.3
-[body2]
-Rx = 0.01
-Ry = 0.01
-E = 210e9
-nu = 0.3
-"""
+SPHERES = (Path(__file__).resolve().parents[1] / "scenes" / "calculix"
+           / "two-steel-spheres.toml").read_text()
 #: Hertz's contact radius of SPHERES, written out: a = (3 P R' / (4 E*))^(1/3),
 #: R' = R/2, E* = E / (2 (1 - nu^2)).
 A = (3 * 830.7692307692308 * 0.005 / (4 * 210e9 / (2 * (1 - 0.09)))) ** (1 / 3)

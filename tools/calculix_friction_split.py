@@ -46,19 +46,8 @@ import numpy as np
 ROOT = Path(__file__).resolve().parents[1]
 sys.path.insert(0, str(ROOT))
 
-SPHERES = """name = "two steel spheres R 10 mm, 830.77 N"
-load = 830.7692307692308
-[body1]
-Rx = 0.01
-Ry = 0.01
-E = 210e9
-nu = 0.3
-[body2]
-Rx = 0.01
-Ry = 0.01
-E = 210e9
-nu = 0.3
-"""
+SPHERES = (Path(__file__).resolve().parents[1] / "scenes" / "calculix"
+           / "two-steel-spheres.toml").read_text()
 #: What the frictional level-0 run gave (docs/howto/calculix.md): P reached [N], and per
 #: ramp the ramp's increments, the fraction of the peak displacement of its worst point
 #: and that point's force error.
