@@ -297,10 +297,15 @@ inverse_cube_root(double m, double j)
                  C2 = 0.08593193062435243, C3 = -0.049690080091560035,
                  C4 = 0.028427719739719047;
     double x = m * pow2(j), t = m - 1.5; /* 2^j by its bits: no select */
-    double r = (C0 + t * (C1 + t * (C2 + t * (C3 + t * C4))))
+    /* Estrin's scheme and the Newton step as r/3 (4 - (r r)(r x)): fewer
+     * operations in a row (the chain's latency bounds the narrow vectors of
+     * the plain path); the caller's double-double step makes b's digits
+     * independent of r's last bits */
+    double t2 = t * t;
+    double r = ((C0 + C1 * t) + t2 * ((C2 + C3 * t) + C4 * t2))
                * (j >= 2.0 ? 0.6299605249474366 : (j >= 1.0 ? 0.7937005259840998 : 1.0));
-    r = r * (4.0 - x * (r * r * r)) * (1.0 / 3.0);
-    return r * (4.0 - x * (r * r * r)) * (1.0 / 3.0);
+    r = (r * (1.0 / 3.0)) * (4.0 - (r * r) * (r * x));
+    return (r * (1.0 / 3.0)) * (4.0 - (r * r) * (r * x));
 }
 
 /* -------------------------------------------- the exact scalar geometry */
@@ -775,6 +780,18 @@ fast_geometry_common(ptrdiff_t n, const double *const in[HERTZ_NGEOMETRY], stage
 #if RADIUS_RANGE != 240
 #error "lo and hi are 2^-+RADIUS_RANGE"
 #endif
+    /* sin^2 and cos^2 of the angles in a loop of their own: a short loop whose
+     * iterations the processor overlaps (in one long loop body the polynomial's
+     * latency is not hidden where the vectors are narrow) */
+    double ssa[HERTZ_BLOCK], cca[HERTZ_BLOCK], oka[HERTZ_BLOCK], sxa[HERTZ_BLOCK];
+    double sya[HERTZ_BLOCK], g1a[HERTZ_BLOCK], g2a[HERTZ_BLOCK], cxa[HERTZ_BLOCK];
+    double cya[HERTZ_BLOCK];
+    if (!aligned) {
+        for (ptrdiff_t i = 0; i < n; ++i) { /* vectorised */
+            double angle = ANGLE[i];
+            sin2_cos2(fabs(angle) <= FAST_ANGLE ? angle : 0.0, &ssa[i], &cca[i]);
+        }
+    }
     for (ptrdiff_t i = 0; i < n; ++i) { /* vectorised */
         double r1x = R1X[i], r1y = R1Y[i], r2x = R2X[i], r2y = R2Y[i], angle = ANGLE[i];
         /* ok = 0 where the element leaves the common case (NaN included): the
@@ -797,7 +814,6 @@ fast_geometry_common(ptrdiff_t n, const double *const in[HERTZ_NGEOMETRY], stage
         r1y = ok ? r1y : 1.0;
         r2x = ok ? r2x : 1.0;
         r2y = ok ? r2y : 1.0;
-        angle = ok ? angle : 0.0;
         double sx, sy, g1, g2, cx, cy, pabs;
         curvature_products(r1x, r1y, r2x, r2y, &sx, &sy, &g1, &g2, &cx, &cy, &pabs, common);
         double rs = (sx + sy) / pabs;
@@ -810,20 +826,31 @@ fast_geometry_common(ptrdiff_t n, const double *const in[HERTZ_NGEOMETRY], stage
         double t;
         split_normal(big > 0.0 ? big : 1.0, &t);
         double f = pow2(-t);
-        sx *= f;
-        sy *= f;
-        double rx, ry;
+        /* the rest in a second loop (short loops: the processor overlaps their
+         * iterations, where one long body leaves the latencies of its chain of
+         * division, square root and division exposed on narrow vectors) */
+        oka[i] = ok ? 1.0 : 0.0;
+        sxa[i] = sx * f;
+        sya[i] = sy * f;
+        g1a[i] = g1 * f;
+        g2a[i] = g2 * f;
+        cxa[i] = cx * f;
+        cya[i] = cy * f;
+        s->rs[i] = ok ? rs : 1.0;
+        s->rse[i] = 0.0;
+        s->ce[i] = t;
+        s->pabs[i] = pabs;
+    }
+    for (ptrdiff_t i = 0; i < n; ++i) { /* vectorised */
+        int ok = oka[i] != 0.0;
+        double sx = sxa[i], sy = sya[i], rx, ry;
         if (aligned) {
             rx = sx > sy ? sx : sy;
             ry = sx > sy ? sy : sx;
         }
         else {
-            g1 *= f;
-            g2 *= f;
-            cx *= f;
-            cy *= f;
-            double ss, cc;
-            sin2_cos2(angle, &ss, &cc);
+            double g1 = g1a[i], g2 = g2a[i], cx = cxa[i], cy = cya[i];
+            double ss = ssa[i], cc = cca[i];
             double gg = g1 * g2, terms, trace = sx + sy;
             double det = curvature_determinant(sx, sy, cx, cy, gg, ss, cc, &terms); /* (1') */
             double dg = gg >= 0.0 ? cx - cy : sx - sy; /* g1 - g2 or g1 + g2 */
@@ -844,10 +871,6 @@ fast_geometry_common(ptrdiff_t n, const double *const in[HERTZ_NGEOMETRY], stage
         ok &= (rx > 0.0) & (ry >= DBL_MIN) & (rx / ry <= DBL_MAX);
         s->other[i] = ok ? 0.0 : 1.0;
         s->alpha[i] = ok ? rx / ry : 1.0;
-        s->rs[i] = ok ? rs : 1.0;
-        s->rse[i] = 0.0;
-        s->ce[i] = t;
-        s->pabs[i] = pabs;
         s->rx[i] = rx;
         s->ry[i] = ry;
     }
@@ -1086,15 +1109,17 @@ coefficients_stage(ptrdiff_t n, const stage1 *s, const double *lam, const double
 #define GIVEN_NAMES n, cl, cbm, cbe, cdm, cde, cpm, cpe, csm, cse, vm, ve, v, oa, ob, oload, \
                     op0, odelta, ostiff
 
-/* x 2^e; in the fast variant, *wide becomes 1 where |e| > 1000. */
+/* x 2^e; in the fast variant, *wide becomes the largest |e| placed (the
+ * caller flags the element where that is beyond 1000: its block is then done
+ * again by the exact variant, so the value placed there does not matter). */
 HERTZ_INLINE double
 place(double x, double e, double *wide, const int fast)
 {
     if (!fast) {
         return scale2(x, e);
     }
-    *wide = fabs(e) <= 1000.0 ? *wide : 1.0;
-    return x * pow2(fabs(e) <= 1000.0 ? e : 0.0);
+    *wide = fabs(e) > *wide ? fabs(e) : *wide;
+    return x * pow2(e);
 }
 
 /* The given value as vm 2^ve: split here in the fast variants (every value of
@@ -1113,9 +1138,12 @@ value_of(const double *restrict vm, const double *restrict ve, const double *res
 HERTZ_INLINE double
 given_load_body(GIVEN_PARAMETERS, const int fused, const int fast)
 {
-    double wide[HERTZ_BLOCK];
+    /* two loops: the cube root's long chain of dependent operations, then the
+     * outputs (short loops: the processor overlaps their iterations, where one
+     * long body leaves the chain's latency exposed on narrow vectors) */
+    double wide[HERTZ_BLOCK], bhs[HERTZ_BLOCK], bls[HERTZ_BLOCK], qs[HERTZ_BLOCK];
+    double shs[HERTZ_BLOCK], sls[HERTZ_BLOCK];
     for (ptrdiff_t i = 0; i < n; ++i) { /* vectorised */
-        double w = 0.0;
         /* b^3 = cb P = (xh + xl) 2^(3q) */
         double vme, vmi = value_of(vm, ve, v, i, &vme, fast);
         double xl, xh = two_prod(cbm[i], vmi, &xl, fused);
@@ -1135,15 +1163,24 @@ given_load_body(GIVEN_PARAMETERS, const int fused, const int fast)
         double bh = xh * r2;
         double sl, sh = two_prod(bh, bh, &sl, fused), cl3, ch = two_prod(sh, bh, &cl3, fused);
         cl3 += sl * bh;
-        double bl = (((xh - ch) - cl3) + xl) * (r2 * (1.0 / 3.0));
-        double b2l, b2h = dd_mul(bh, bl, bh, bl, &b2l, fused);
+        bhs[i] = bh;
+        bls[i] = (((xh - ch) - cl3) + xl) * (r2 * (1.0 / 3.0));
+        qs[i] = q;
+        shs[i] = sh;
+        sls[i] = sl;
+    }
+    for (ptrdiff_t i = 0; i < n; ++i) { /* vectorised */
+        double w = 0.0, bh = bhs[i], bl = bls[i], q = qs[i];
+        /* b^2 = dd_mul(bh, bl, bh, bl) with its exact product bh bh = sh + sl */
+        double b2e = sls[i] + (bh * bl + bl * bh), b2h = shs[i] + b2e;
+        double b2l = b2e - (b2h - shs[i]);
         oa[i] = place(dd_scale(cl[i], bh, bl, fused), q, &w, fast);
         ob[i] = place(bh + bl, q, &w, fast);
         oload[i] = v[i];
         op0[i] = place(dd_scale(cpm[i], bh, bl, fused), cpe[i] + q, &w, fast);
         odelta[i] = place(dd_scale(cdm[i], b2h, b2l, fused), cde[i] + 2.0 * q, &w, fast);
         ostiff[i] = place(dd_scale(csm[i], bh, bl, fused), cse[i] + q, &w, fast);
-        wide[i] = w;
+        wide[i] = w <= 1000.0 ? 0.0 : 1.0;
     }
     return fast && any_flag(n, wide) ? 1.0 : 0.0;
 }
@@ -1176,7 +1213,7 @@ given_approach_body(GIVEN_PARAMETERS, const int fused, const int fast)
         op0[i] = place(dd_scale(cpm[i], bh, bl, fused), cpe[i] + q, &w, fast);
         odelta[i] = v[i];
         ostiff[i] = place(dd_scale(csm[i], bh, bl, fused), cse[i] + q, &w, fast);
-        wide[i] = w;
+        wide[i] = w <= 1000.0 ? 0.0 : 1.0;
     }
     return fast && any_flag(n, wide) ? 1.0 : 0.0;
 }
@@ -1200,7 +1237,7 @@ given_p0_body(GIVEN_PARAMETERS, const int fused, const int fast)
         op0[i] = v[i];
         odelta[i] = place(dd_scale(cdm[i], b2h, b2l, fused), cde[i] + 2.0 * q, &w, fast);
         ostiff[i] = place(dd_scale(csm[i], bh, bl, fused), cse[i] + q, &w, fast);
-        wide[i] = w;
+        wide[i] = w <= 1000.0 ? 0.0 : 1.0;
     }
     return fast && any_flag(n, wide) ? 1.0 : 0.0;
 }
