@@ -868,11 +868,15 @@ fast_geometry_common(ptrdiff_t n, const double *const in[HERTZ_NGEOMETRY], stage
             }
             ok &= valid;
         }
-        ok &= (rx > 0.0) & (ry >= DBL_MIN) & (rx / ry <= DBL_MAX);
-        s->other[i] = ok ? 0.0 : 1.0;
-        s->alpha[i] = ok ? rx / ry : 1.0;
+        oka[i] = ok ? 1.0 : 0.0;
         s->rx[i] = rx;
         s->ry[i] = ry;
+    }
+    for (ptrdiff_t i = 0; i < n; ++i) { /* vectorised */
+        double rx = s->rx[i], ry = s->ry[i];
+        int ok = (oka[i] != 0.0) & (rx > 0.0) & (ry >= DBL_MIN) & (rx / ry <= DBL_MAX);
+        s->other[i] = ok ? 0.0 : 1.0;
+        s->alpha[i] = ok ? rx / ry : 1.0;
     }
     return any_flag(n, s->other);
 }
@@ -1138,11 +1142,12 @@ value_of(const double *restrict vm, const double *restrict ve, const double *res
 HERTZ_INLINE double
 given_load_body(GIVEN_PARAMETERS, const int fused, const int fast)
 {
-    /* two loops: the cube root's long chain of dependent operations, then the
-     * outputs (short loops: the processor overlaps their iterations, where one
-     * long body leaves the chain's latency exposed on narrow vectors) */
+    /* three loops: the seed of the cube root, its double-double Newton step,
+     * the outputs (short loops: the processor overlaps their iterations, where
+     * one long body leaves its chain's latency exposed on narrow vectors) */
     double wide[HERTZ_BLOCK], bhs[HERTZ_BLOCK], bls[HERTZ_BLOCK], qs[HERTZ_BLOCK];
-    double shs[HERTZ_BLOCK], sls[HERTZ_BLOCK];
+    double shs[HERTZ_BLOCK], sls[HERTZ_BLOCK], xhs[HERTZ_BLOCK], xls[HERTZ_BLOCK];
+    double rs[HERTZ_BLOCK];
     for (ptrdiff_t i = 0; i < n; ++i) { /* vectorised */
         /* b^3 = cb P = (xh + xl) 2^(3q) */
         double vme, vmi = value_of(vm, ve, v, i, &vme, fast);
@@ -1155,17 +1160,20 @@ given_load_body(GIVEN_PARAMETERS, const int fused, const int fast)
         q -= below;
         j += 3.0 * below; /* e = 3q + j, j in {0, 1, 2} */
         double f = pow2(j);
-        xh = xm * f;
-        xl *= f;
+        xhs[i] = xm * f;
+        xls[i] = xl * f;
+        qs[i] = q;
+        rs[i] = inverse_cube_root(xm, j);
+    }
+    for (ptrdiff_t i = 0; i < n; ++i) { /* vectorised */
         /* b = bh + bl: bh = x r^2 with r = x^(-1/3), then one Newton step in
          * double-double, bl = (x - bh^3) r^2 / 3 */
-        double r = inverse_cube_root(xm, j), r2 = r * r;
+        double xh = xhs[i], xl = xls[i], r = rs[i], r2 = r * r;
         double bh = xh * r2;
         double sl, sh = two_prod(bh, bh, &sl, fused), cl3, ch = two_prod(sh, bh, &cl3, fused);
         cl3 += sl * bh;
         bhs[i] = bh;
         bls[i] = (((xh - ch) - cl3) + xl) * (r2 * (1.0 / 3.0));
-        qs[i] = q;
         shs[i] = sh;
         sls[i] = sl;
     }
