@@ -168,6 +168,23 @@ two_prod(double a, double b, double *err, const int fused)
     return p;
 }
 
+/* two_prod for a b26 of at most 26 significant bits: a's halves times b26
+ * are exact, and so is their sum with the rounding of the product. */
+HERTZ_INLINE double
+two_prod_26(double a, double b26, double *err, const int fused)
+{
+    double p = a * b26;
+    if (fused) {
+        *err = fma(a, b26, -p);
+    }
+    else {
+        double ah, al;
+        veltkamp(a, &ah, &al);
+        *err = (ah * b26 - p) + al * b26;
+    }
+    return p;
+}
+
 /* (h + l)(x + y) as a double-double. */
 HERTZ_INLINE double
 dd_mul(double h, double l, double x, double y, double *lo, const int fused)
@@ -177,6 +194,14 @@ dd_mul(double h, double l, double x, double y, double *lo, const int fused)
     double s = p + e;
     *lo = e - (s - p);
     return s;
+}
+
+/* c (h + l), rounded once, for an h of at most 26 significant bits. */
+HERTZ_INLINE double
+dd_scale_26(double c, double h, double l, const int fused)
+{
+    double e, p = two_prod_26(c, h, &e, fused);
+    return p + (e + c * l);
 }
 
 /* (h + l) / c, rounded once. */
@@ -1146,7 +1171,7 @@ given_load_body(GIVEN_PARAMETERS, const int fused, const int fast)
      * the outputs (short loops: the processor overlaps their iterations, where
      * one long body leaves its chain's latency exposed on narrow vectors) */
     double wide[HERTZ_BLOCK], bhs[HERTZ_BLOCK], bls[HERTZ_BLOCK], qs[HERTZ_BLOCK];
-    double shs[HERTZ_BLOCK], sls[HERTZ_BLOCK], xhs[HERTZ_BLOCK], xls[HERTZ_BLOCK];
+    double shs[HERTZ_BLOCK], xhs[HERTZ_BLOCK], xls[HERTZ_BLOCK];
     double rs[HERTZ_BLOCK];
     for (ptrdiff_t i = 0; i < n; ++i) { /* vectorised */
         /* b^3 = cb P = (xh + xl) 2^(3q) */
@@ -1166,28 +1191,31 @@ given_load_body(GIVEN_PARAMETERS, const int fused, const int fast)
         rs[i] = inverse_cube_root(xm, j);
     }
     for (ptrdiff_t i = 0; i < n; ++i) { /* vectorised */
-        /* b = bh + bl: bh = x r^2 with r = x^(-1/3), then one Newton step in
-         * double-double, bl = (x - bh^3) r^2 / 3 */
+        /* b = bh + bl: bh = x r^2 (r = x^(-1/3)) rounded to 26 bits, so that
+         * bh^2 and the products c bh of the outputs take half of Dekker's
+         * operations; then one Newton step in double-double, bl0 = (x - bh^3)
+         * r^2 / 3, leaves bh eps^2 (eps <= 2^-26, the rounding of bh), which
+         * bl = bl0 + bl0^2 r restores: b to about 2^-77 */
         double xh = xhs[i], xl = xls[i], r = rs[i], r2 = r * r;
-        double bh = xh * r2;
-        double sl, sh = two_prod(bh, bh, &sl, fused), cl3, ch = two_prod(sh, bh, &cl3, fused);
-        cl3 += sl * bh;
+        double bh, unused;
+        veltkamp(xh * r2, &bh, &unused); /* 26 bits: bh^2 exact, bh c in two parts */
+        double sh = bh * bh, cl3, ch = two_prod_26(sh, bh, &cl3, fused);
+        double bl = (((xh - ch) - cl3) + xl) * (r2 * (1.0 / 3.0));
         bhs[i] = bh;
-        bls[i] = (((xh - ch) - cl3) + xl) * (r2 * (1.0 / 3.0));
+        bls[i] = bl + bl * (bl * r); /* the Newton step's error, bh eps^2 */
         shs[i] = sh;
-        sls[i] = sl;
     }
     for (ptrdiff_t i = 0; i < n; ++i) { /* vectorised */
         double w = 0.0, bh = bhs[i], bl = bls[i], q = qs[i];
-        /* b^2 = dd_mul(bh, bl, bh, bl) with its exact product bh bh = sh + sl */
-        double b2e = sls[i] + (bh * bl + bl * bh), b2h = shs[i] + b2e;
+        /* b^2 = bh^2 + (2 bh bl + bl^2) (bl is up to 2^-26 of b: its square counts) */
+        double b2e = (bh * bl + bl * bh) + bl * bl, b2h = shs[i] + b2e;
         double b2l = b2e - (b2h - shs[i]);
-        oa[i] = place(dd_scale(cl[i], bh, bl, fused), q, &w, fast);
+        oa[i] = place(dd_scale_26(cl[i], bh, bl, fused), q, &w, fast);
         ob[i] = place(bh + bl, q, &w, fast);
         oload[i] = v[i];
-        op0[i] = place(dd_scale(cpm[i], bh, bl, fused), cpe[i] + q, &w, fast);
+        op0[i] = place(dd_scale_26(cpm[i], bh, bl, fused), cpe[i] + q, &w, fast);
         odelta[i] = place(dd_scale(cdm[i], b2h, b2l, fused), cde[i] + 2.0 * q, &w, fast);
-        ostiff[i] = place(dd_scale(csm[i], bh, bl, fused), cse[i] + q, &w, fast);
+        ostiff[i] = place(dd_scale_26(csm[i], bh, bl, fused), cse[i] + q, &w, fast);
         wide[i] = w <= 1000.0 ? 0.0 : 1.0;
     }
     return fast && any_flag(n, wide) ? 1.0 : 0.0;
