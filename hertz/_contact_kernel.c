@@ -805,24 +805,19 @@ fast_geometry_common(ptrdiff_t n, const double *const in[HERTZ_NGEOMETRY], stage
 #if RADIUS_RANGE != 240
 #error "lo and hi are 2^-+RADIUS_RANGE"
 #endif
-    /* sin^2 and cos^2 of the angles in a loop of their own: a short loop whose
-     * iterations the processor overlaps (in one long loop body the polynomial's
-     * latency is not hidden where the vectors are narrow) */
+    /* the block in four loops: which elements are in the common case and the
+     * sines of their angles; the curvature products; the eigenvalues; their
+     * ratio (short loops: the processor overlaps their iterations, where one
+     * long body leaves the latency of its chains exposed on narrow vectors) */
     double ssa[HERTZ_BLOCK], cca[HERTZ_BLOCK], oka[HERTZ_BLOCK], sxa[HERTZ_BLOCK];
     double sya[HERTZ_BLOCK], g1a[HERTZ_BLOCK], g2a[HERTZ_BLOCK], cxa[HERTZ_BLOCK];
     double cya[HERTZ_BLOCK];
-    if (!aligned) {
-        for (ptrdiff_t i = 0; i < n; ++i) { /* vectorised */
-            double angle = ANGLE[i];
-            sin2_cos2(fabs(angle) <= FAST_ANGLE ? angle : 0.0, &ssa[i], &cca[i]);
-        }
-    }
     for (ptrdiff_t i = 0; i < n; ++i) { /* vectorised */
-        double r1x = R1X[i], r1y = R1Y[i], r2x = R2X[i], r2y = R2Y[i], angle = ANGLE[i];
+        double angle = ANGLE[i];
+        double a1x = fabs(R1X[i]), a1y = fabs(R1Y[i]), a2x = fabs(R2X[i]), a2y = fabs(R2Y[i]);
         /* ok = 0 where the element leaves the common case (NaN included): the
          * tests are ANDed as truth values (compares and ANDs of masks on vectors,
          * where a chain of selects would cost three operations a test) */
-        double a1x = fabs(r1x), a1y = fabs(r1y), a2x = fabs(r2x), a2y = fabs(r2y);
         int ok;
         if (common) {
             ok = (a1x >= lo) & (a1x <= hi) & (a1y >= lo) & (a1y <= hi) & (a2x >= lo)
@@ -834,11 +829,17 @@ fast_geometry_common(ptrdiff_t n, const double *const in[HERTZ_NGEOMETRY], stage
                  & ((a2x <= hi) | (a2x == INFINITY)) & (a2y >= lo)
                  & ((a2y <= hi) | (a2y == INFINITY)) & (fabs(angle) <= FAST_ANGLE);
         }
-        /* harmless stand-ins where not ok (the element is redone by the scalar code) */
-        r1x = ok ? r1x : 1.0;
-        r1y = ok ? r1y : 1.0;
-        r2x = ok ? r2x : 1.0;
-        r2y = ok ? r2y : 1.0;
+        oka[i] = ok ? 1.0 : 0.0;
+        if (!aligned) {
+            sin2_cos2(fabs(angle) <= FAST_ANGLE ? angle : 0.0, &ssa[i], &cca[i]);
+        }
+    }
+    for (ptrdiff_t i = 0; i < n; ++i) { /* vectorised */
+        double r1x = R1X[i], r1y = R1Y[i], r2x = R2X[i], r2y = R2Y[i];
+        int ok = oka[i] != 0.0;
+        /* where not ok, what is computed does not matter: geometry_stage does
+         * the element again (every field it stores), before any later stage
+         * reads it (no stand-ins: each select costs three operations in SSE2) */
         double sx, sy, g1, g2, cx, cy, pabs;
         curvature_products(r1x, r1y, r2x, r2y, &sx, &sy, &g1, &g2, &cx, &cy, &pabs, common);
         double rs = (sx + sy) / pabs;
@@ -849,11 +850,8 @@ fast_geometry_common(ptrdiff_t n, const double *const in[HERTZ_NGEOMETRY], stage
         }
         ok &= big > 0.0;
         double t;
-        split_normal(big > 0.0 ? big : 1.0, &t);
+        split_normal(big, &t); /* (any bits where not ok) */
         double f = pow2(-t);
-        /* the rest in a second loop (short loops: the processor overlaps their
-         * iterations, where one long body leaves the latencies of its chain of
-         * division, square root and division exposed on narrow vectors) */
         oka[i] = ok ? 1.0 : 0.0;
         sxa[i] = sx * f;
         sya[i] = sy * f;
@@ -861,7 +859,7 @@ fast_geometry_common(ptrdiff_t n, const double *const in[HERTZ_NGEOMETRY], stage
         g2a[i] = g2 * f;
         cxa[i] = cx * f;
         cya[i] = cy * f;
-        s->rs[i] = ok ? rs : 1.0;
+        s->rs[i] = rs;
         s->rse[i] = 0.0;
         s->ce[i] = t;
         s->pabs[i] = pabs;
@@ -901,7 +899,7 @@ fast_geometry_common(ptrdiff_t n, const double *const in[HERTZ_NGEOMETRY], stage
         double rx = s->rx[i], ry = s->ry[i];
         int ok = (oka[i] != 0.0) & (rx > 0.0) & (ry >= DBL_MIN) & (rx / ry <= DBL_MAX);
         s->other[i] = ok ? 0.0 : 1.0;
-        s->alpha[i] = ok ? rx / ry : 1.0;
+        s->alpha[i] = rx / ry; /* (a flagged element is done again) */
     }
     return any_flag(n, s->other);
 }
