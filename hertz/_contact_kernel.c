@@ -310,11 +310,11 @@ sin2_cos2_dd(double x, double ss[2], double cc[2])
     cc[1] = odd ? s2l : c2l;
 }
 
-/* x^(-1/3) for x = m 2^j, 1 <= m < 2, j in {0, 1, 2}, to a few ulp without a
+/* x^(-1/3) for x = m 2^j, 1 <= m < 2, j in {0, 1, 2}, to 3e-9 without a
  * division: a degree-4 least-squares polynomial for m^(-1/3) (fitted at 64
- * Chebyshev nodes, error 3.9e-5) times 2^(-j/3), then two Newton steps
- * r <- r (4 - x r^3)/3 (error 3e-9, then rounding).  The caller's
- * double-double step completes the cube root. */
+ * Chebyshev nodes, error 3.9e-5) times 2^(-j/3), then one Newton step
+ * r <- r (4 - x r^3)/3 (error 2 (3.9e-5)^2).  The caller's double-double step
+ * completes the cube root. */
 HERTZ_INLINE double
 inverse_cube_root(double m, double j)
 {
@@ -324,12 +324,10 @@ inverse_cube_root(double m, double j)
     double x = m * pow2(j), t = m - 1.5; /* 2^j by its bits: no select */
     /* Estrin's scheme and the Newton step as r/3 (4 - (r r)(r x)): fewer
      * operations in a row (the chain's latency bounds the narrow vectors of
-     * the plain path); the caller's double-double step makes b's digits
-     * independent of r's last bits */
+     * the plain path) */
     double t2 = t * t;
     double r = ((C0 + C1 * t) + t2 * ((C2 + C3 * t) + C4 * t2))
                * (j >= 2.0 ? 0.6299605249474366 : (j >= 1.0 ? 0.7937005259840998 : 1.0));
-    r = (r * (1.0 / 3.0)) * (4.0 - (r * r) * (r * x));
     return (r * (1.0 / 3.0)) * (4.0 - (r * r) * (r * x));
 }
 
@@ -1190,17 +1188,19 @@ given_load_body(GIVEN_PARAMETERS, const int fused, const int fast)
     }
     for (ptrdiff_t i = 0; i < n; ++i) { /* vectorised */
         /* b = bh + bl: bh = x r^2 (r = x^(-1/3)) rounded to 26 bits, so that
-         * bh^2 and the products c bh of the outputs take half of Dekker's
-         * operations; then one Newton step in double-double, bl0 = (x - bh^3)
-         * r^2 / 3, leaves bh eps^2 (eps <= 2^-26, the rounding of bh), which
-         * bl = bl0 + bl0^2 r restores: b to about 2^-77 */
+         * bh^2 is exact and the products c bh of the outputs take half of
+         * Dekker's operations (eps = b/bh - 1 <= 2^-26 with r's 3e-9); then
+         * one Newton step in double-double, bl0 = (x - bh^3) / (3 bh^2) (x -
+         * bh^3 exact but for its last rounding), overshoots by bh (eps^2 +
+         * eps^3/3), and bl = bl0 - bl0^2 r takes eps^2 back: b to (5/3) eps^3,
+         * about 2^-77 */
         double xh = xhs[i], xl = xls[i], r = rs[i], r2 = r * r;
         double bh, unused;
         veltkamp(xh * r2, &bh, &unused); /* 26 bits: bh^2 exact, bh c in two parts */
         double sh = bh * bh, cl3, ch = two_prod_26(sh, bh, &cl3, fused);
-        double bl = (((xh - ch) - cl3) + xl) * (r2 * (1.0 / 3.0));
+        double bl = (((xh - ch) - cl3) + xl) / (3.0 * sh);
         bhs[i] = bh;
-        bls[i] = bl + bl * (bl * r); /* the Newton step's error, bh eps^2 */
+        bls[i] = bl - bl * (bl * r); /* the Newton step's error, bh eps^2 */
         shs[i] = sh;
     }
     for (ptrdiff_t i = 0; i < n; ++i) { /* vectorised */
