@@ -121,7 +121,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from . import _interop
+from . import _interop, _ufuncs
 from ._contact import contact as _contact
 from ._tangential import _batch_shape, _mu, _selection, dundurs_beta, tangential_stiffness
 from ._validate import as_float_array, error_at, first_failure, index_text
@@ -595,29 +595,24 @@ def _result(*fields):
     return LoadPath(*arrays, *fields[8:])
 
 
-_EPS = np.finfo(float).eps
-
-
-def _piece_integral(x0, x1, c0, c2):
-    """int_x0^x1 (c0 + c2 x^2) dx (as _SpringBed._integral)."""
-    w = x1 - x0
-    return w * (c0 + c2 * (x1 * x1 + x1 * x0 + x0 * x0) / 3.0)
-
-
 class _SpringStacks:
     """The spring bed of the module docstring for N contacts, each a stack of pieces
     ordered by x, advanced by displacement at a cost per step that does not grow with
-    the history.
+    the history; the step is compiled (hertz/_load_path_kernel.c, through
+    ``_ufuncs.load_path_step``).
 
-    Contact i holds n[i] pieces; piece j covers [E[i, j], E[i, j + 1]] (the last one up
-    to the contact's size alpha[i]) and carries u = (delta[i] - D[i, j]) + B[i, j] x^2,
-    delta[i] the scaled displacement since the contact last slid as a whole.  A step
-    moves every spring in contact by d_delta at once by moving delta alone; what
-    changes piece by piece is at the top of the stack only, because the springs that
-    slide in a step are always an outer interval [c, a] (module docstring) and the
-    springs that enter or leave are at the edge:
+    Contact i holds count[i] pieces, each (E, D, B, F): the top one (the last) is
+    ``top[i]``, the ones below it ``pieces[i, j]``, j < count[i] - 1 (most steps change
+    the top piece alone: it is kept in a dense array).  Piece j covers [E, the next
+    piece's E] (the last one up to the contact's size alpha[i]) and carries
+    u = (delta[i] - D) + B x^2, delta[i] the scaled displacement since the contact last
+    slid as a whole (or since it was re-based).  A step moves every spring in contact by
+    d_delta at once by moving delta alone; what changes piece by piece is at the top of
+    the stack only, because the springs that slide in a step are always an outer
+    interval [c, a] (module docstring) and the springs that enter or leave are at the
+    edge:
 
-    * leaving (a falls): pieces that start beyond the new a are popped;
+    * leaving (a falls): pieces that start at or beyond the new a are popped;
     * sliding: pieces whose inner edge slides are popped, the piece holding c is cut
       at c, and one piece on the limit, u = +-(a^2 - x^2), is pushed from c;
     * entering (a rises): one piece is pushed from the old a (the springs that enter
@@ -625,7 +620,7 @@ class _SpringStacks:
       |d_delta| > a1^2 - a0^2);
     * a piece equal to the top one is merged with it.
 
-    F[i, j] is the integral of (-D + B x^2) over the pieces below j, so that the force
+    F is the integral of (-D + B x^2) over the pieces below, so that the force
     Q / (mu P_ref) = (3/2) int_0^a u dx is read from the top piece alone.  When a
     contact slides as a whole its stack is one piece and delta starts again at 0;
     delta is also re-based whenever it exceeds 4 a^2 (the pieces' D and F shifted, a
@@ -635,203 +630,41 @@ class _SpringStacks:
     Memory: the pieces of distinct profile that no later slip has wiped out: the
     pieces of springs that entered while P rose with the edge sticking (one per such
     step with its own ratio d_delta / d(a^2); none while the tangential displacement
-    stands still) and at most one cut piece per reversal remembered; the arrays are as
-    wide as the largest count over the contacts (doubled when a push needs more).
-    Cost per step: a fixed number of passes over the contacts plus passes over only
-    the contacts that pop pieces, each piece popped once after it was pushed (amortised
+    stands still) and at most one cut piece per reversal remembered; ``pieces`` is as
+    wide as the largest count over the contacts since the last growth plus 2 (a step
+    pushes 2 pieces at most), doubled when a step may need more.  Cost per step: one
+    pass over the contacts, each piece popped once after it was pushed (amortised
     constant).
     """
 
-    BLOCK = 16384  # contacts advanced together: the temporaries stay in cache
+    PIECE = 4  # E, D, B, F
 
     def __init__(self, n):
         self.count = np.zeros(n, dtype=np.intp)
         self.alpha = np.zeros(n)
+        self.spare = np.zeros(n)  # the next step's sizes are written here, then swapped
         self.delta = np.zeros(n)
-        self.E = np.zeros((n, 4))
-        self.D = np.zeros((n, 4))
-        self.B = np.zeros((n, 4))
-        self.F = np.zeros((n, 4))
+        self.top = np.zeros((n, self.PIECE))
+        self.pieces = np.zeros((n, 2, self.PIECE))
+        self.most = 0  # the largest count after the last step (at least)
 
     def reset(self, rows):
         self.count[rows] = 0
         self.alpha[rows] = 0.0
         self.delta[rows] = 0.0
 
-    def _room(self, need):
-        width = self.E.shape[1]
+    def room(self):
+        """Make room for a step: count + 2 pieces for every contact."""
+        width = self.pieces.shape[1]
+        need = self.most + 2
         if need > width:
             grow = max(need, 2 * width) - width
-            for name in ("E", "D", "B", "F"):
-                setattr(self, name, np.pad(getattr(self, name), ((0, 0), (0, grow))))
+            self.pieces = np.pad(self.pieces, ((0, 0), (0, grow), (0, 0)))
 
-    def move(self, alpha1, d_delta):
-        """Move every contact to the scaled size alpha1 with the scaled increment
-        d_delta; return Q / (mu P_ref) and the innermost x that slid (alpha1 if none,
-        0 out of contact)."""
-        self._room(int(self.count.max(initial=0)) + 2)  # a step pushes 2 pieces at most
-        n = alpha1.size
-        q = np.empty(n)
-        front = np.empty(n)
-        for start in range(0, n, self.BLOCK):
-            s = slice(start, start + self.BLOCK)
-            _Block(self, s).move(alpha1[s], d_delta[s], q[s], front[s])
-        return q, front
-
-
-class _Block:
-    """One block of the contacts of a :class:`_SpringStacks`: views of its arrays, the
-    pieces' arrays flattened (piece j of contact i at i * width + j) so that reading
-    one piece per contact is a single gather."""
-
-    def __init__(self, stacks, s):
-        self.count, self.alpha, self.delta = stacks.count[s], stacks.alpha[s], stacks.delta[s]
-        self.w = stacks.E.shape[1]
-        self.D2, self.F2 = stacks.D[s], stacks.F[s]
-        self.E, self.D, self.B, self.F = (a[s].ravel() for a in (stacks.E, stacks.D,
-                                                                 stacks.B, stacks.F))
-
-    def move(self, alpha1, d_delta, q_out, front_out):
-        count, w = self.count, self.w
-        gone = alpha1 == 0.0
-        if gone.any():
-            r = np.flatnonzero(gone)
-            count[r] = 0
-            self.alpha[r] = 0.0
-            self.delta[r] = 0.0
-        alpha0 = self.alpha
-        delta1 = self.delta + d_delta
-        a2 = alpha1 * alpha1
-        front = alpha1.copy()
-        # springs leaving: pop the pieces that start at or beyond the new size
-        rows = np.flatnonzero(alpha1 < alpha0)
-        while rows.size:
-            out = self.E[rows * w + count[rows] - 1] >= alpha1[rows]
-            rows = rows[out]
-            count[rows] -= 1
-        top_end = np.minimum(alpha0, alpha1)  # where the old springs end now
-        # springs sliding: an outer interval of the old ones, to +L (s = 1) or -L (s = -1)
-        rows = np.flatnonzero(count > 0)
-        if rows.size:
-            i = rows * w + count[rows] - 1
-            x = top_end[rows]
-            u = (delta1[rows] - self.D[i]) + self.B[i] * (x * x)
-            # beyond the limit by more than the rounding of u (a piece on its limit
-            # that does not move stays on it, not slid by a few ulp)
-            tol = _tolerance(delta1[rows], alpha1[rows])
-            limit = (alpha1[rows] - x) * (alpha1[rows] + x) + tol
-            up, down = u > limit, u < -limit
-            slides = up | down
-            if slides.any():
-                self._slide(rows[slides], np.where(up[slides], 1.0, -1.0), delta1, alpha1,
-                            top_end, front, tol[slides])
-        # springs entering: one piece from the old size, on the limit if it slides
-        rows = np.flatnonzero(alpha1 > alpha0)
-        if rows.size:
-            a0, a1 = alpha0[rows], alpha1[rows]
-            d = (a1 - a0) * (a1 + a0)
-            ratio = d_delta[rows] / d
-            on_limit = np.abs(ratio) > 1.0
-            coef = np.where(on_limit, np.sign(ratio), ratio)
-            self._push(rows, a0, delta1[rows] - coef * a2[rows], -coef)
-            front[rows] = np.where(on_limit & (front[rows] == a1), a0, front[rows])
-        self.alpha[...] = alpha1
-        delta = self.delta
-        delta[...] = delta1
-        # a contact sliding as a whole: one piece on the limit, delta from 0 again
-        whole = (count == 1) & (front == 0.0)
-        if whole.any():
-            r = np.flatnonzero(whole)
-            self.D[r * w] -= delta[r]
-            delta[r] = 0.0
-        far = np.abs(delta) > 4.0 * a2
-        if far.any():
-            r = np.flatnonzero(far & (count > 0))
-            self.D2[r] -= delta[r, None]
-            self.F2[r] += delta[r, None] * self.E.reshape(-1, w)[r]
-            delta[far] = 0.0
-        q_out[...] = self.force()
-        front_out[...] = np.where(gone, 0.0, front)
-
-    def _push(self, rows, edge, D, B):  # noqa: N803 (the module docstring's names)
-        """Push the piece [edge, ...) with the coefficients (D, B) on the given rows
-        (merged with the top piece where that has the same coefficients)."""
-        if rows.size == 0:
-            return
-        w = self.w
-        n = self.count[rows]
-        i = rows * w + np.maximum(n - 1, 0)
-        same = (n > 0) & (self.D[i] == D) & (self.B[i] == B)
-        if same.any():
-            keep = ~same
-            rows, edge, D, B, n, i = rows[keep], edge[keep], D[keep], B[keep], n[keep], i[keep]
-            if rows.size == 0:
-                return
-        F = np.where(n > 0, self.F[i] + _piece_integral(  # noqa: N806
-            self.E[i], edge, -self.D[i], self.B[i]), 0.0)
-        j = rows * w + n
-        self.E[j] = edge
-        self.D[j] = D
-        self.B[j] = B
-        self.F[j] = F
-        self.count[rows] = n + 1
-
-    def _slide(self, rows, sense, delta1, alpha1, top_end, front, tol):
-        """Pop the pieces whose inner edge slides, cut the piece that holds the front c,
-        push the piece on the limit from c (rows: the contacts whose outer old spring
-        slides, ``sense`` the way)."""
-        w = self.w
-        n = self.count[rows]
-        a1, d1 = alpha1[rows], delta1[rows]
-        tiny = 4.0 * _EPS * a1
-        # find the innermost piece whose inner edge does not slide (all of it: c = 0)
-        k = n - 1
-        active = np.arange(rows.size)
-        while active.size:
-            j = k[active]
-            i = rows[active] * w + j
-            e = self.E[i]
-            u = (d1[active] - self.D[i]) + self.B[i] * (e * e)
-            lim = (a1[active] - e) * (a1[active] + e) + tol[active]
-            edge_slides = sense[active] * u > lim
-            k[active[edge_slides & (j == 0)]] = -1  # everything slides
-            active = active[edge_slides & (j > 0)]
-            k[active] -= 1
-        cut = k >= 0
-        kk = np.maximum(k, 0)
-        i = rows * w + kk
-        e0 = self.E[i]
-        end = top_end[rows]
-        e1 = np.minimum(np.where(kk + 1 < n, self.E[rows * w + np.minimum(kk + 1, w - 1)],
-                                 end), end)
-        d_k, b_k = self.D[i], self.B[i]
-        # the front in piece k: s (d1 - d_k + b_k c^2) = a1^2 - c^2
-        with np.errstate(divide="ignore", invalid="ignore"):
-            c = np.sqrt((a1 * a1 - sense * (d1 - d_k)) / (1.0 + sense * b_k))
-        c = np.where(np.isfinite(c), np.clip(c, e0, e1), e1)
-        c = np.where(cut, c, 0.0)
-        c = np.where(cut & (c - e0 <= tiny), e0, c)  # a sliver that sticks: slides too
-        slid = end - c > tiny  # a sliver that slides: nothing slid
-        rows, sense, c, e0, k = rows[slid], sense[slid], c[slid], e0[slid], k[slid]
-        a1, d1 = a1[slid], d1[slid]
-        # keep the pieces below the front (piece k if a stretch of it sticks)
-        count = np.where(c > e0, k + 1, np.maximum(k, 0))
-        self.count[rows] = np.where(c == 0.0, 0, count)
-        self._push(rows, c, d1 - sense * (a1 * a1), -sense)
-        front[rows] = c
-
-    def force(self):
-        """Q / (mu P_ref) of every contact: (3/2) int_0^a u dx."""
-        n = self.count
-        i = np.arange(n.size) * self.w + np.maximum(n - 1, 0)
-        e, D, B, F = self.E[i], self.D[i], self.B[i], self.F[i]  # noqa: N806
-        q = F + self.delta * e + _piece_integral(e, self.alpha, self.delta - D, B)
-        return np.where(n > 0, 1.5 * q, 0.0)
-
-
-def _tolerance(delta1, alpha1):
-    """The rounding of u = (delta - D) + B x^2 against the limit: 8 eps (|delta| + a^2)."""
-    return 8.0 * _EPS * (np.abs(delta1) + alpha1 * alpha1)
+    def live(self, i):
+        """The pieces of contact i, (count[i], 4): E, D, B, F of each, inner first."""
+        n = int(self.count[i])
+        return np.concatenate([self.pieces[i, :max(n - 1, 0)], self.top[i, None][:n > 0]])
 
 
 def _shape_of(*arrays, size=None):
@@ -884,7 +717,8 @@ class LoadPathSpring:
     Notes
     -----
     Memory per contact: 4 doubles per piece of the spring bed (its inner edge, two
-    coefficients and the force below it), plus 9 numbers.  The pieces are those of
+    coefficients and the force below it; the arrays are as wide as the largest count
+    in the batch plus 2), plus 13 numbers.  The pieces are those of
     distinct profile that no later slip has wiped out: one per step in which P rose
     while the edge of the contact stuck and the displacement moved (the springs that
     entered in that step remember it), and at most one cut piece per remembered
@@ -892,13 +726,14 @@ class LoadPathSpring:
     a contact sliding at its edge, or whose P stands or falls, keeps a few pieces,
     while a long rise of P at a small, varying tangential rate adds one a step (that
     memory is the physics: the springs that entered at each step carry different
-    forces).  Cost per step: a fixed number of passes over the contacts, plus passes
-    over only those that pop pieces; each piece is popped at most once after it was
-    pushed, so the cost per step does not grow with the history.
-    benchmarks/dem_laws.py measures it at N = 1e6: about 18x one scipy ellipk + ellipe
-    pass per contact (numpy gathers and scatters of one piece per contact; a compiled
-    kernel would bring it near :class:`hertz.TangentialSpring`); one contact alone, about
-    0.3 ms a step.
+    forces).  Cost per step: one compiled pass over the contacts
+    (hertz/_load_path_kernel.c: the numpy algorithm it replaced, bit for bit, one
+    contact at a time), after numpy's cbrt of the normal forces; each piece is popped
+    at most once after it was pushed, so the cost per step does not grow with the
+    history.  benchmarks/dem_laws.py measures it at N = 1e6: about 1.9x one scipy
+    ellipk + ellipe pass per contact (it was 18x in numpy), near
+    :class:`hertz.TangentialSpring`; one contact alone, about 0.011 ms a step (the
+    Python call and its input checks).
 
     Examples
     --------
@@ -944,23 +779,29 @@ class LoadPathSpring:
         self._mu = flat(mu)
         self._a_ref, self._b_ref = flat(a_ref), flat(b_ref)
         self._reach = 1.5 * self._mu / flat(stiffness)
+
+        def compact(full, *given):  # one value where the batch shares it (the kernel's stride 0)
+            return full[:1].copy() if all(np.size(v) == 1 for v in given) else full
+
+        self._constants = (compact(self._mu, mu), compact(self._reach, mu, stiffness))
         n = self._mu.size
         self._bed = _SpringStacks(n)
-        self._state = {name: np.zeros(n) for name in ("normal_force", "force",
-                                                       "displacement", "stick_a",
-                                                       "stick_b")}
+        self._state = {name: np.zeros(n) for name in ("force", "normal_force",
+                                                       "displacement", "front")}
         self._state["sliding"] = np.zeros(n, dtype=bool)
 
     def _view(self, name):
-        x = self._state[name]
-        return x.reshape(self._shape).copy() if self._shape else x.item()
+        return self._shaped(self._state[name].copy())
+
+    def _shaped(self, x):
+        return x.reshape(self._shape) if self._shape else x.item()
 
     shape = property(lambda self: self._shape, doc="The batch's shape (() for one contact).")
     normal_force = property(lambda self: self._view("normal_force"))
     force = property(lambda self: self._view("force"))
     displacement = property(lambda self: self._view("displacement"))
-    stick_a = property(lambda self: self._view("stick_a"))
-    stick_b = property(lambda self: self._view("stick_b"))
+    stick_a = property(lambda self: self._shaped(self._state["front"] * self._a_ref))
+    stick_b = property(lambda self: self._shaped(self._state["front"] * self._b_ref))
     sliding = property(lambda self: self._view("sliding"))
 
     @property
@@ -998,50 +839,31 @@ class LoadPathSpring:
             increment that takes the accumulated displacement beyond the range of a
             double (magnitude 1.8e308 m); the state is unchanged.
         """
-        load = self._checked(normal_force, "normal_force", _interop.N)
-        inc = self._checked(increment, "increment", _interop.M)
-        ok = (load >= 0.0) & (load < math.inf)
-        if not ok.all():
-            raise error_at("normal_force", load.reshape(self._shape), first_failure(ok),
+        load = np.ascontiguousarray(self._checked(normal_force, "normal_force", _interop.N))
+        inc = np.ascontiguousarray(self._checked(increment, "increment", _interop.M))
+        bed, state = self._bed, self._state
+        bed.room()
+        alpha = np.cbrt(load, out=bed.spare)  # the new sizes (numpy's cbrt)
+        # the checks, then the step (hertz/_load_path_kernel.c): nothing is written where
+        # a check fails
+        status, value = _ufuncs.load_path_step(
+            bed.count, bed.alpha, bed.delta, bed.top, bed.pieces, alpha, load, inc,
+            *self._constants, state["force"], state["normal_force"], state["displacement"],
+            state["sliding"], state["front"])
+        if status == 1:
+            raise error_at("normal_force", load.reshape(self._shape), value,
                            "a non-negative, finite force in N")
-        ok = np.isfinite(inc)
-        if not ok.all():
-            raise error_at("increment", inc.reshape(self._shape), first_failure(ok),
+        if status == 2:
+            raise error_at("increment", inc.reshape(self._shape), value,
                            "a finite displacement in m")
-        state = self._state
-        with np.errstate(over="ignore"):
-            displacement = state["displacement"] + inc
-        ok = np.isfinite(displacement)
-        if not ok.all():  # checked before any change of the state
-            i = first_failure(ok)
+        if status == 3:
             raise ValueError(
                 f"increment must keep the accumulated displacement within the range of a "
                 f"double (magnitude at most 1.7976931348623157e308 m), got "
-                f"{float(inc[i])!r} m on {float(state['displacement'][i])!r} m"
-                f"{index_text(self._shape, i)}")
-        bed = self._bed
-        alpha = np.cbrt(load)
-        # beyond 2 alpha^2 every spring slides, so a larger increment leaves the same
-        # state (and one of 1e300 m scaled would overflow): limited to +-4 alpha^2
-        bound = np.maximum(alpha, bed.alpha)
-        bound = 4.0 * bound * bound
-        with np.errstate(over="ignore"):
-            scaled = np.clip(inc / self._reach, -bound, bound)
-        scaled, front = bed.move(alpha, scaled)
-        mu = self._mu
-        limit = mu * load
-        # a force that rounds onto or past the limit of friction (springs back on their
-        # limits, not slipped by a hair) is the limit, as TangentialSpring takes it: the
-        # force never exceeds mu P
-        force = mu * scaled
-        sliding = (alpha > 0.0) & ((front == 0.0) | (np.abs(force) >= limit))
-        front = np.where(sliding, 0.0, front)
-        state["force"] = np.where(sliding, np.copysign(limit, scaled), force)
-        state["normal_force"] = np.array(load)
-        state["displacement"] = displacement
-        state["sliding"] = sliding
-        state["stick_a"] = front * self._a_ref
-        state["stick_b"] = front * self._b_ref
+                f"{float(inc[value])!r} m on {float(state['displacement'][value])!r} m"
+                f"{index_text(self._shape, value)}")
+        bed.most = value
+        bed.alpha, bed.spare = alpha, bed.alpha
         return self.force
 
     def _checked(self, value, name, unit):
@@ -1057,24 +879,3 @@ class LoadPathSpring:
             raise ValueError(f"{name} must broadcast to the contacts' shape {self._shape}, "
                              f"got the shape {arr.shape}") from None
 
-
-def _saturated(delta, alpha):
-    """The scaled increment ``delta`` of a step of :class:`LoadPathSpring`, limited to
-    +-4 alpha^2, alpha the larger contact size of the step (before or after it).
-
-    Beyond 2 alpha^2 every spring slides (each carried |u| <= alpha^2 and its limit is
-    at most alpha^2; an entering spring slides beyond a1^2 - a0^2 <= alpha^2), so a
-    larger increment leaves the same state; one of 1e300 m scaled by 3 mu P_ref / (2
-    k_ref) overflows to inf, which the bed would turn into NaN."""
-    bound = 4.0 * alpha * alpha
-    return min(max(delta, -bound), bound)
-
-
-def _checked_scalar(value, name, unit):
-    if _interop.library(value) == "pint":
-        value = _interop._to_si(value, name, unit)
-    arr = as_float_array(value, name)
-    if arr.ndim != 0:
-        raise ValueError(f"{name} must be a single number (one contact, one step), got an "
-                         f"array of shape {arr.shape}")
-    return arr

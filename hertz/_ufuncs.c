@@ -32,6 +32,7 @@
 
 #include "_contact_kernel.h"
 #include "_kernel.h"
+#include "_load_path_kernel.h"
 #include "_stress_kernel.h"
 #include "_tangential_kernel.h"
 
@@ -1089,6 +1090,126 @@ associate_integrals(PyObject *self, PyObject *args)
     return result;
 }
 
+/* ------------------------------------------------------- LoadPathSpring */
+
+/* The data of load_path_step's argument `name`: a 1-d ndarray of `typenum`,
+ * C-contiguous and aligned (writeable where `write`), of length n, or of
+ * length 1 where `stride` is given (*stride: 1 for length n, 0 for 1). */
+static void *
+lp_array(PyObject *obj, const char *name, int typenum, npy_intp n, int write,
+         ptrdiff_t *stride)
+{
+    if (!PyArray_Check(obj)) {
+        PyErr_Format(PyExc_TypeError, "load_path_step: %s must be a numpy array, got %.100s",
+                     name, Py_TYPE(obj)->tp_name);
+        return NULL;
+    }
+    PyArrayObject *a = (PyArrayObject *)obj;
+    if (!PyArray_EquivTypenums(PyArray_TYPE(a), typenum) || !PyArray_ISNOTSWAPPED(a)) {
+        PyErr_Format(PyExc_TypeError, "load_path_step: %s must be of dtype %s (native)", name,
+                     typenum == NPY_DOUBLE ? "float64" : typenum == NPY_BOOL ? "bool" : "intp");
+        return NULL;
+    }
+    int flags = NPY_ARRAY_C_CONTIGUOUS | NPY_ARRAY_ALIGNED | (write ? NPY_ARRAY_WRITEABLE : 0);
+    if (!PyArray_CHKFLAGS(a, flags)) {
+        PyErr_Format(PyExc_ValueError, "load_path_step: %s must be C-contiguous and aligned%s",
+                     name, write ? " and writeable" : "");
+        return NULL;
+    }
+    npy_intp length = PyArray_NDIM(a) == 1 ? PyArray_DIM(a, 0) : -1;
+    if (length != n && !(stride != NULL && length == 1)) {
+        PyErr_Format(PyExc_ValueError, "load_path_step: %s must be 1-d of length %zd%s", name,
+                     (Py_ssize_t)n, stride != NULL ? " or 1" : "");
+        return NULL;
+    }
+    if (stride != NULL) {
+        *stride = length == n ? 1 : 0;
+    }
+    return PyArray_DATA(a);
+}
+
+PyDoc_STRVAR(load_path_step_doc,
+"load_path_step(count, alpha, delta, top, pieces, alpha1, load, increment, mu,\n"
+"               reach, force, normal_force, displacement, sliding, front)\n"
+"    -> (status, value)\n\n"
+"One step of hertz.LoadPathSpring for n contacts (hertz/_load_path_kernel.c).\n"
+"The stacks (count intp, delta float64 of length n, top of shape (n, 4), pieces\n"
+"of shape (n, width, 4)) and the outputs (float64, sliding bool, length n) are\n"
+"updated in place; alpha holds the sizes before the step (not written: alpha1 =\n"
+"numpy.cbrt(load) holds them after it); mu, reach of length n or 1.  status 0:\n"
+"done, value the largest count; otherwise nothing was written and value is the\n"
+"first contact where status fails: 1 the load (negative, not finite), 2 the\n"
+"increment (not finite), 3 displacement + increment (not finite).  A count\n"
+"outside [0, width - 2] is a RuntimeError (the other contacts made their step).\n"
+"Private.");
+
+static PyObject *
+load_path_step(PyObject *self, PyObject *const *args, Py_ssize_t nargs)
+{
+    (void)self;
+    static const char *const names[] = {
+        "count", "alpha", "delta", "top", "pieces", "alpha1", "load", "increment", "mu",
+        "reach", "force", "normal_force", "displacement", "sliding", "front"};
+    enum { NARGS = sizeof names / sizeof names[0] };
+    if (nargs != NARGS) {
+        PyErr_Format(PyExc_TypeError, "load_path_step takes %d arguments, got %zd", NARGS,
+                     nargs);
+        return NULL;
+    }
+    if (!PyArray_Check(args[0]) || PyArray_NDIM((PyArrayObject *)args[0]) != 1) {
+        PyErr_SetString(PyExc_TypeError, "load_path_step: count must be a 1-d numpy array");
+        return NULL;
+    }
+    npy_intp n = PyArray_DIM((PyArrayObject *)args[0], 0);
+    void *data[NARGS];
+    ptrdiff_t strides[2], width = 0;
+    for (int k = 0; k < NARGS; ++k) {
+        if (k == 3 || k == 4) { /* top (n, 4), pieces (n, width, 4) */
+            PyArrayObject *a = (PyArrayObject *)args[k];
+            int ndim = k == 3 ? 2 : 3;
+            if (!PyArray_Check(args[k]) || PyArray_NDIM(a) != ndim || PyArray_DIM(a, 0) != n
+                || PyArray_DIM(a, ndim - 1) != HERTZ_PIECE || (k == 4 && PyArray_DIM(a, 1) < 2)
+                || PyArray_TYPE(a) != NPY_DOUBLE || !PyArray_ISNOTSWAPPED(a)
+                || !PyArray_CHKFLAGS(a, NPY_ARRAY_CARRAY)) {
+                PyErr_Format(PyExc_ValueError, "load_path_step: %s must be a writeable, "
+                             "aligned, C-contiguous float64 array of shape (%zd, %s%d)",
+                             names[k], (Py_ssize_t)n, k == 3 ? "" : "width >= 2, ",
+                             HERTZ_PIECE);
+                return NULL;
+            }
+            width = k == 4 ? PyArray_DIM(a, 1) : width;
+            data[k] = PyArray_DATA(a);
+            continue;
+        }
+        int typenum = k == 0 ? NPY_INTP : k == 13 ? NPY_BOOL : NPY_DOUBLE;
+        int write = k == 0 || k == 2 || k >= 10;
+        ptrdiff_t *stride = k == 8 || k == 9 ? &strides[k - 8] : NULL;
+        data[k] = lp_array(args[k], names[k], typenum, n, write, stride);
+        if (data[k] == NULL) {
+            return NULL;
+        }
+    }
+    hertz_spring_stacks stacks = {n, width, data[0], data[1], data[2], data[3], data[4]};
+    hertz_load_path_input in = {data[6], data[5], data[7], data[8], data[9], strides[0],
+                                strides[1]};
+    hertz_load_path_output out = {data[10], data[11], data[12], data[14], data[13]};
+    ptrdiff_t value = 0;
+    int status;
+    Py_BEGIN_ALLOW_THREADS
+    status = hertz_load_path_check(n, in.load, in.increment, out.displacement, &value);
+    if (status == HERTZ_LP_OK) {
+        value = hertz_load_path_step(&stacks, &in, &out);
+    }
+    Py_END_ALLOW_THREADS
+    if (value < 0) {
+        PyErr_Format(PyExc_RuntimeError, "load_path_step: contact %zd holds a count outside "
+                     "[0, width - 2 = %zd]: no room for a step (it was left as it was)",
+                     (Py_ssize_t)(-1 - value), (Py_ssize_t)(width - 2));
+        return NULL;
+    }
+    return Py_BuildValue("(in)", status, (Py_ssize_t)value);
+}
+
 /* ------------------------------------------------------------ build info */
 
 #if defined(HERTZ_BUILD_INFO)
@@ -1212,6 +1333,8 @@ static PyMethodDef methods[] = {
     {"path", path, METH_VARARGS, path_doc},
     {"build_info", build_info, METH_NOARGS, build_info_doc},
     {"associate_integrals", associate_integrals, METH_VARARGS, assoc_doc},
+    {"load_path_step", (PyCFunction)(void (*)(void))load_path_step, METH_FASTCALL,
+     load_path_step_doc},
     {NULL, NULL, 0, NULL},
 };
 

@@ -22,7 +22,7 @@ import numpy as np
 import pytest
 
 import hertz
-from hertz import _load_path, _tangential
+from hertz import _tangential
 
 mp.mp.dps = 50
 E1, NU1, E2, NU2 = 210e9, 0.3, 70e9, 0.22
@@ -181,13 +181,10 @@ def test_tangential_memory_is_the_open_loops():
 
 
 # ----------------------------------------------------------------------- LoadPathSpring
-@pytest.mark.parametrize("block", [None, 5])
-def test_load_path_batch_is_n_scalar_springs(block, monkeypatch):
+def test_load_path_batch_is_n_scalar_springs():
     """A batch of 16 contacts (radii, mu different) on random paths of P and increments,
-    P = 0 (separation) at times, some slots reset: the bits of 16 single springs (also
-    in blocks of 5 contacts)."""
-    if block:
-        monkeypatch.setattr(_load_path._SpringStacks, "BLOCK", block)
+    P = 0 (separation) at times, some slots reset: the bits of 16 single springs.  (The
+    compiled step is the numpy code it replaced, bit for bit: test_load_path_kernel.py.)"""
     rng = np.random.default_rng(5)
     n = 16
     radius = rng.uniform(2e-3, 2e-2, n)
