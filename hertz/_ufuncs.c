@@ -524,37 +524,36 @@ static void
 count_beyond(ptrdiff_t n, const double *const in[], const double *a)
 {
     const double inv = inverse_limit;
+    /* A candidate for the largest a / min|R| of the call: beyond, and a at least
+     * that ratio so far times min|R| (less 2^-50: a non-candidate's a / min|R|,
+     * rounded, is below the ratio so far); the ratio itself, a division, only for
+     * the candidates, which are few once a large one is known. */
+    const double bar = beyond_ratio * (1.0 - 0x1p-50);
+    double rmin[HERTZ_BLOCK], candidate[HERTZ_BLOCK];
     Py_ssize_t count = 0;
-    for (ptrdiff_t i = 0; i < n; ++i) { /* vectorised */
-        double t = a[i] * inv;
-        count += (fabs(in[0][i]) < t) | (fabs(in[1][i]) < t) | (fabs(in[2][i]) < t)
-                 | (fabs(in[3][i]) < t);
+    for (ptrdiff_t i = 0; i < n; ++i) { /* vectorised (radii: never NaN) */
+        double r0 = fabs(in[0][i]), r1 = fabs(in[1][i]), r2 = fabs(in[2][i]),
+               r3 = fabs(in[3][i]);
+        double r01 = r0 < r1 ? r0 : r1, r23 = r2 < r3 ? r2 : r3;
+        double r = r01 < r23 ? r01 : r23;
+        int beyond = r < a[i] * inv;
+        count += beyond;
+        rmin[i] = r;
+        candidate[i] = beyond & (a[i] >= bar * r) ? 1.0 : 0.0;
     }
     if (count == 0) {
         return;
     }
     beyond_count += count;
-    double ratio[HERTZ_BLOCK]; /* a block that holds some: a/R where beyond, else -1 */
-    for (ptrdiff_t i = 0; i < n; ++i) { /* vectorised (radii: never NaN) */
-        double t = a[i] * inv, r0 = fabs(in[0][i]), r1 = fabs(in[1][i]),
-               r2 = fabs(in[2][i]), r3 = fabs(in[3][i]);
-        double r01 = r0 < r1 ? r0 : r1, r23 = r2 < r3 ? r2 : r3;
-        double r = r01 < r23 ? r01 : r23;
-        ratio[i] = r < t ? a[i] / r : -1.0;
-    }
-    ptrdiff_t at = -1;
     for (ptrdiff_t i = 0; i < n; ++i) { /* the first of the largest */
-        if (ratio[i] > beyond_ratio) {
-            beyond_ratio = ratio[i];
-            at = i;
+        if (candidate[i] != 0.0) {
+            double ratio = a[i] / rmin[i];
+            if (ratio > beyond_ratio) {
+                beyond_ratio = ratio;
+                beyond_a = a[i];
+                beyond_r = rmin[i];
+            }
         }
-    }
-    if (at >= 0) {
-        double r0 = fabs(in[0][at]), r1 = fabs(in[1][at]), r2 = fabs(in[2][at]),
-               r3 = fabs(in[3][at]);
-        double r01 = r0 < r1 ? r0 : r1, r23 = r2 < r3 ? r2 : r3;
-        beyond_a = a[at];
-        beyond_r = r01 < r23 ? r01 : r23;
     }
 }
 
