@@ -783,7 +783,7 @@ class LoadPathSpring:
         def compact(full, *given):  # one value where the batch shares it (the kernel's stride 0)
             return full[:1].copy() if all(np.size(v) == 1 for v in given) else full
 
-        self._constants = (compact(self._mu, mu), compact(self._reach, mu, stiffness))
+        self._constants = (compact(self._mu, mu), compact(1.0 / self._reach, mu, stiffness))
         n = self._mu.size
         self._bed = _SpringStacks(n)
         self._state = {name: np.zeros(n) for name in ("force", "normal_force",

@@ -114,7 +114,7 @@ static inline double
 piece_integral(double x0, double x1, double c0, double c2)
 {
     double w = x1 - x0;
-    return w * (c0 + c2 * (x1 * x1 + x1 * x0 + x0 * x0) / 3.0);
+    return w * (c0 + c2 * (x1 * x1 + x1 * x0 + x0 * x0) * (1.0 / 3.0));
 }
 
 /* A contact's stack: *count pieces, the top one in *top, the others in
@@ -238,7 +238,7 @@ hertz_load_path_check(ptrdiff_t n, const double *load, const double *increment,
 }
 
 /* One step of contacts [0, n) (see hertz_load_path_step); the strides of mu
- * and reach are arguments so that a caller passing constants gets a loop of
+ * and per_reach are arguments so that a caller passing constants gets a loop of
  * its own (one value for all: read once). */
 static inline ptrdiff_t
 step_contacts(ptrdiff_t n_contacts, ptrdiff_t width, ptrdiff_t *restrict count,
@@ -246,7 +246,8 @@ step_contacts(ptrdiff_t n_contacts, ptrdiff_t width, ptrdiff_t *restrict count,
               double *restrict tops, double *restrict pieces,
               const double *restrict alpha1, const double *restrict load_of,
               const double *restrict increment, const double *restrict mu_of,
-              const double *restrict reach, ptrdiff_t mu_stride, ptrdiff_t reach_stride,
+              const double *restrict per_reach, ptrdiff_t mu_stride,
+              ptrdiff_t per_reach_stride,
               double *restrict force_of, double *restrict normal_force,
               double *restrict displacement, double *restrict front_of,
               unsigned char *restrict sliding_of)
@@ -269,7 +270,7 @@ step_contacts(ptrdiff_t n_contacts, ptrdiff_t width, ptrdiff_t *restrict count,
         /* the scaled increment, limited to +-4 alpha^2 (alpha the larger size) */
         double bound = max2(a1, a0);
         bound = 4.0 * bound * bound;
-        double dd = clip(inc / reach[i * reach_stride], -bound, bound);
+        double dd = clip(inc * per_reach[i * per_reach_stride], -bound, bound);
         int gone = a1 == 0.0;
         if (gone) { /* out of contact: nothing carries or remembers a force */
             n = 0;
@@ -356,14 +357,14 @@ hertz_load_path_step(const hertz_spring_stacks *stacks, const hertz_load_path_in
 #define STEP(MU, REACH)                                                                     \
     step_contacts(stacks->n, stacks->width, stacks->count, stacks->alpha, stacks->delta,    \
                   stacks->top, stacks->pieces, in->alpha1, in->load, in->increment, in->mu, \
-                  in->reach, MU, REACH, out->force, out->normal_force, out->displacement,   \
+                  in->per_reach, MU, REACH, out->force, out->normal_force, out->displacement,   \
                   out->front, out->sliding)
-    if (in->mu_stride == 0 && in->reach_stride == 0) { /* one body and mu for all */
+    if (in->mu_stride == 0 && in->per_reach_stride == 0) { /* one body and mu for all */
         return STEP(0, 0);
     }
-    if (in->mu_stride == 1 && in->reach_stride == 1) {
+    if (in->mu_stride == 1 && in->per_reach_stride == 1) {
         return STEP(1, 1);
     }
-    return STEP(in->mu_stride, in->reach_stride);
+    return STEP(in->mu_stride, in->per_reach_stride);
 #undef STEP
 }

@@ -28,12 +28,13 @@ typedef struct {
 } hertz_spring_stacks;
 
 /* Per contact: the normal force P [N], alpha1 = cbrt(P) (numpy's cbrt,
- * computed by the caller), the displacement increment [m]; mu and the reach
- * 3 mu / (2 k) at P = 1 N, each an array of n (stride 1) or one value
+ * computed by the caller), the displacement increment [m]; mu and per_reach,
+ * the reciprocal of the reach 3 mu / (2 k) at P = 1 N [1/m] (a product in the
+ * step where a division would bound it), each an array of n (stride 1) or one value
  * (stride 0). */
 typedef struct {
-    const double *load, *alpha1, *increment, *mu, *reach;
-    ptrdiff_t mu_stride, reach_stride;
+    const double *load, *alpha1, *increment, *mu, *per_reach;
+    ptrdiff_t mu_stride, per_reach_stride;
 } hertz_load_path_input;
 
 /* The outputs, per contact (the LoadPathSpring's state, updated in place:

@@ -1129,13 +1129,13 @@ lp_array(PyObject *obj, const char *name, int typenum, npy_intp n, int write,
 
 PyDoc_STRVAR(load_path_step_doc,
 "load_path_step(count, alpha, delta, top, pieces, alpha1, load, increment, mu,\n"
-"               reach, force, normal_force, displacement, sliding, front)\n"
+"               per_reach, force, normal_force, displacement, sliding, front)\n"
 "    -> (status, value)\n\n"
 "One step of hertz.LoadPathSpring for n contacts (hertz/_load_path_kernel.c).\n"
 "The stacks (count intp, delta float64 of length n, top of shape (n, 4), pieces\n"
 "of shape (n, width, 4)) and the outputs (float64, sliding bool, length n) are\n"
 "updated in place; alpha holds the sizes before the step (not written: alpha1 =\n"
-"numpy.cbrt(load) holds them after it); mu, reach of length n or 1.  status 0:\n"
+"numpy.cbrt(load) holds them after it); mu, per_reach (1 / reach) of length n or 1.  status 0:\n"
 "done, value the largest count; otherwise nothing was written and value is the\n"
 "first contact where status fails: 1 the load (negative, not finite), 2 the\n"
 "increment (not finite), 3 displacement + increment (not finite).  A count\n"
@@ -1148,7 +1148,7 @@ load_path_step(PyObject *self, PyObject *const *args, Py_ssize_t nargs)
     (void)self;
     static const char *const names[] = {
         "count", "alpha", "delta", "top", "pieces", "alpha1", "load", "increment", "mu",
-        "reach", "force", "normal_force", "displacement", "sliding", "front"};
+        "per_reach", "force", "normal_force", "displacement", "sliding", "front"};
     enum { NARGS = sizeof names / sizeof names[0] };
     if (nargs != NARGS) {
         PyErr_Format(PyExc_TypeError, "load_path_step takes %d arguments, got %zd", NARGS,

@@ -21,7 +21,7 @@ _EPS = np.finfo(float).eps
 def _piece_integral(x0, x1, c0, c2):
     """int_x0^x1 (c0 + c2 x^2) dx (as _SpringBed._integral)."""
     w = x1 - x0
-    return w * (c0 + c2 * (x1 * x1 + x1 * x0 + x0 * x0) / 3.0)
+    return w * (c0 + c2 * (x1 * x1 + x1 * x0 + x0 * x0) * (1.0 / 3.0))
 
 
 class _SpringStacks:
@@ -272,7 +272,7 @@ def step(bed, load, inc, mu, reach, a_ref, b_ref):
     bound = np.maximum(alpha, bed.alpha)
     bound = 4.0 * bound * bound
     with np.errstate(over="ignore"):
-        scaled = np.clip(inc / reach, -bound, bound)
+        scaled = np.clip(inc * (1.0 / reach), -bound, bound)
     scaled, front = bed.move(alpha, scaled)
     limit = mu * load
     force = mu * scaled
