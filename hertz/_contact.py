@@ -1127,18 +1127,27 @@ def _cutoff(radius: float) -> float:
 
 
 def _warn_counted(a, body1: Body, body2: Body, count: int, a_max: float,
-                  r_max: float) -> None:
+                  r_max: float, address: int = 0) -> None:
     """The warning for the ``count`` contacts the kernel found beyond the limit, naming the
-    one of the largest a/R, whose a and smallest |R| it reported: found by its a (one
-    comparison over the batch), its radii confirming it."""
+    one of the largest a/R, whose a, smallest |R| and the address of its a (0 if unknown)
+    it reported: found at that address, or by its a (one comparison over the batch), its
+    radii confirming it."""
     shape = np.shape(a)
     flat = np.asarray(a).reshape(-1)
     radii = [np.broadcast_to(r, shape).reshape(-1) for r in
              (body1.Rx, body1.Ry, body2.Rx, body2.Ry)]
-    candidates = np.flatnonzero(flat == a_max)
-    i = next((int(k) for k in candidates
-              if min(abs(float(r[k])) for r in radii) == r_max),
-             int(candidates[0]) if candidates.size else 0)
+
+    def confirmed(k):
+        return flat[k] == a_max and min(abs(float(r[k])) for r in radii) == r_max
+
+    k, rest = divmod(address - flat.ctypes.data, flat.itemsize)
+    if address and flat.flags.c_contiguous and rest == 0 and 0 <= k < flat.size \
+            and confirmed(k):
+        i = int(k)
+    else:
+        candidates = np.flatnonzero(flat == a_max)
+        i = next((int(k) for k in candidates if confirmed(k)),
+                 int(candidates[0]) if candidates.size else 0)
     _warn_size(a, body1, body2, "a", shape, i, count)
 
 
@@ -1307,9 +1316,9 @@ def contact(body1: Body, body2: Body, load=None, angle=0.0, *, approach=None,
                 _ufuncs.beyond()  # the kernel counts the contacts beyond Hertz's validity
                 c = Contact(*fused(*args), _Deferred(geometry, shape),
                             (body1.nu, body2.nu, body1.E, body2.E))
-                count, a_max, r_max = _ufuncs.beyond()
+                count, a_max, r_max, address = _ufuncs.beyond()
                 if count:
-                    _warn_counted(c.a, body1, body2, count, a_max, r_max)
+                    _warn_counted(c.a, body1, body2, count, a_max, r_max, address)
                 return c
         else:
             # One geometry carries many loads: solve each geometry once and

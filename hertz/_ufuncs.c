@@ -21,6 +21,7 @@
 #include <structmember.h>
 #include <float.h>
 #include <math.h>
+#include <stdint.h>
 #include <stdio.h>
 #include <string.h>
 
@@ -514,14 +515,16 @@ partial_slip_block(ptrdiff_t n, const double *const *in, double *const *out, int
 #define HERTZ_THREAD_LOCAL _Thread_local
 #endif
 static HERTZ_THREAD_LOCAL Py_ssize_t beyond_count = 0;
-/* Among them, the largest a / min|R| and its a and min|R| (for the warning's message: the
- * caller finds the element by its a) */
+/* Among them, the largest a / min|R| and its a and min|R| (for the warning's message) */
 static HERTZ_THREAD_LOCAL double beyond_ratio = -1.0, beyond_a = 0.0, beyond_r = 0.0;
+/* and where its a is, when the loop wrote the output array itself (else 0): the
+ * caller finds the element without a pass over the batch */
+static HERTZ_THREAD_LOCAL uintptr_t beyond_at = 0;
 static double inverse_limit = 0.0; /* 0 until hertz._contact registers it: no check */
 static PyObject *warn_size = NULL; /* hertz._contact._check_size */
 
 static void
-count_beyond(ptrdiff_t n, const double *const in[], const double *a)
+count_beyond(ptrdiff_t n, const double *const in[], const double *a, int in_place)
 {
     const double inv = inverse_limit;
     /* A candidate for the largest a / min|R| of the call: beyond, and a at least
@@ -552,6 +555,7 @@ count_beyond(ptrdiff_t n, const double *const in[], const double *a)
                 beyond_ratio = ratio;
                 beyond_a = a[i];
                 beyond_r = rmin[i];
+                beyond_at = in_place ? (uintptr_t)(a + i) : 0;
             }
         }
     }
@@ -616,7 +620,8 @@ drive(char *const data[], npy_intp const dims[], npy_intp const steps[], int nin
             return -1;
         }
         if (check && inverse_limit > 0.0) {
-            count_beyond(n, in, out[HERTZ_OUT_A]);
+            count_beyond(n, in, out[HERTZ_OUT_A],
+                         steps[nin + HERTZ_OUT_A] == sizeof(double));
         }
         for (int k = 0; k < nout; ++k) {
             int j = nin + k;
@@ -916,20 +921,24 @@ register_validity(PyObject *self, PyObject *args)
 }
 
 PyDoc_STRVAR(beyond_doc,
-"beyond() -> (count, a, r)\n\n"
+"beyond() -> (count, a, r, address)\n\n"
 "How many contacts the batch loops of this thread found beyond Hertz's validity\n"
 "since the last call, and the a and smallest |R| of the one with the largest a/R\n"
-"(0.0, 0.0 when none); resets them.  Private: hertz.contact calls it.");
+"(0.0, 0.0 when none) and the address of its a where the loop wrote the output\n"
+"array itself (0 where it wrote a buffer, or none); resets them.  Private:\n"
+"hertz.contact calls it.");
 
 static PyObject *
 beyond(PyObject *self, PyObject *unused)
 {
     (void)self;
     (void)unused;
-    PyObject *out = Py_BuildValue("(ndd)", beyond_count, beyond_a, beyond_r);
+    PyObject *out = Py_BuildValue("(nddK)", beyond_count, beyond_a, beyond_r,
+                                  (unsigned long long)beyond_at);
     beyond_count = 0;
     beyond_ratio = -1.0;
     beyond_a = beyond_r = 0.0;
+    beyond_at = 0;
     return out;
 }
 

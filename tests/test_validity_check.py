@@ -52,7 +52,7 @@ def test_the_kernel_count_is_numpy_s_test_on_every_path(path):
     expected = numpy_beyond(out[0], args[:4])
     assert 0 < expected < 50_001  # the batch straddles the limit
     assert count == expected
-    assert _ufuncs.beyond() == (0, 0.0, 0.0)  # read and reset
+    assert _ufuncs.beyond() == (0, 0.0, 0.0, 0)  # read and reset
 
 
 def test_the_count_is_exact_one_ulp_either_side_of_the_limit():
@@ -144,3 +144,63 @@ def test_the_warning_names_the_largest_ratio_as_numpy_finds_it():
     message = str(caught[0].message)
     assert message.startswith(f"{int(beyond.sum())} of 30000 contacts have a semi-major axis")
     assert f"a/R = {ratio[i]:.4g} at index {i} " in message
+
+
+@pytest.mark.parametrize("layout", ["C", "F"])
+@pytest.mark.parametrize("address", ["reported", "dropped"])
+def test_the_warning_names_the_same_element_for_any_layout(layout, address, monkeypatch):
+    """The kernel also reports where the a it names lies, which spares hertz.contact a
+    search over the batch; without it (a loop that wrote a buffer) the search finds the
+    same element: the one numpy finds, in C and in Fortran order."""
+    from hertz._validate import index_text
+
+    if address == "dropped":
+        beyond = _ufuncs.beyond
+        monkeypatch.setattr(_ufuncs, "beyond", lambda: (*beyond()[:3], 0))
+    args = random_batch(20_000, 5)
+    radii = [np.asarray(r).reshape(100, 200) for r in args[:4]]
+    if layout == "F":
+        radii = [np.asfortranarray(r) for r in radii]
+    load = np.random.default_rng(6).uniform(1.0, 3000.0, (100, 200))
+    body1 = hertz.Body(radii[0], radii[1], 210e9, 0.3)
+    body2 = hertz.Body(radii[2], radii[3], 70e9, 0.33)
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always")
+        c = hertz.contact(body1, body2, load=load)
+    r = np.abs(np.array(radii)).min(axis=0)
+    beyond_limit = r < c.a * _contact._INVERSE_LIMIT
+    ratio = np.where(beyond_limit, c.a / r, -np.inf)
+    i = int(np.argmax(ratio))  # the first of the largest, in C order
+    assert len(caught) == 1
+    message = str(caught[0].message)
+    assert f"a/R = {ratio.flat[i]:.4g}{index_text((100, 200), i)} " in message
+
+
+def test_a_wrong_address_is_not_believed():
+    """An address outside the batch, or at an element that is not the one reported, falls
+    back to the search."""
+    a = np.array([1.0, 5.0, 3.0])
+    body = hertz.Body(np.array([1.0, 1.0, 1.0]), 1.0, 210e9, 0.3)
+    plane = hertz.Body.plane(210e9, 0.3)
+    for address in (a.ctypes.data + 8 * 7, a.ctypes.data, a.ctypes.data + 3):
+        with warnings.catch_warnings(record=True) as caught:
+            warnings.simplefilter("always")
+            _contact._warn_counted(a, body, plane, 1, 5.0, 1.0, address)
+        assert " at index 1 " in str(caught[0].message)
+
+
+def test_a_batch_written_in_place_is_not_searched(monkeypatch):
+    """Where the loops wrote the output array itself, the warning's element is taken at the
+    address the kernel reported: no pass over the batch (numpy's search is not called)."""
+    args = random_batch(5_000, 7)
+    body1 = hertz.Body(args[0], args[1], 210e9, 0.3)
+    body2 = hertz.Body(args[2], args[3], 70e9, 0.33)
+
+    def no_search(*_):
+        raise AssertionError("searched the batch")
+
+    monkeypatch.setattr(_contact.np, "flatnonzero", no_search)
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always")
+        hertz.contact(body1, body2, load=args[9], angle=args[4])
+    assert len(caught) == 1
