@@ -523,38 +523,43 @@ static HERTZ_THREAD_LOCAL uintptr_t beyond_at = 0;
 static double inverse_limit = 0.0; /* 0 until hertz._contact registers it: no check */
 static PyObject *warn_size = NULL; /* hertz._contact._check_size */
 
+/* min |R| of element i of a block (radii: never NaN) */
+static inline double
+smallest_radius(const double *const in[], ptrdiff_t i)
+{
+    double r0 = fabs(in[0][i]), r1 = fabs(in[1][i]), r2 = fabs(in[2][i]), r3 = fabs(in[3][i]);
+    double r01 = r0 < r1 ? r0 : r1, r23 = r2 < r3 ? r2 : r3;
+    return r01 < r23 ? r01 : r23;
+}
+
 static void
 count_beyond(ptrdiff_t n, const double *const in[], const double *a, int in_place)
 {
     const double inv = inverse_limit;
     /* A candidate for the largest a / min|R| of the call: beyond, and a at least
      * that ratio so far times min|R| (less 2^-50: a non-candidate's a / min|R|,
-     * rounded, is below the ratio so far); the ratio itself, a division, only for
-     * the candidates, which are few once a large one is known. */
+     * rounded, is below the ratio so far).  The ratios, divisions, only in a
+     * block that holds candidates, which are few once a large one is known. */
     const double bar = beyond_ratio * (1.0 - 0x1p-50);
-    double rmin[HERTZ_BLOCK], candidate[HERTZ_BLOCK];
-    Py_ssize_t count = 0;
-    for (ptrdiff_t i = 0; i < n; ++i) { /* vectorised (radii: never NaN) */
-        double r0 = fabs(in[0][i]), r1 = fabs(in[1][i]), r2 = fabs(in[2][i]),
-               r3 = fabs(in[3][i]);
-        double r01 = r0 < r1 ? r0 : r1, r23 = r2 < r3 ? r2 : r3;
-        double r = r01 < r23 ? r01 : r23;
+    Py_ssize_t count = 0, candidates = 0;
+    for (ptrdiff_t i = 0; i < n; ++i) { /* vectorised */
+        double r = smallest_radius(in, i);
         int beyond = r < a[i] * inv;
         count += beyond;
-        rmin[i] = r;
-        candidate[i] = beyond & (a[i] >= bar * r) ? 1.0 : 0.0;
-    }
-    if (count == 0) {
-        return;
+        candidates += beyond & (a[i] >= bar * r);
     }
     beyond_count += count;
+    if (candidates == 0) {
+        return;
+    }
     for (ptrdiff_t i = 0; i < n; ++i) { /* the first of the largest */
-        if (candidate[i] != 0.0) {
-            double ratio = a[i] / rmin[i];
+        double r = smallest_radius(in, i);
+        if (r < a[i] * inv && a[i] >= bar * r) {
+            double ratio = a[i] / r;
             if (ratio > beyond_ratio) {
                 beyond_ratio = ratio;
                 beyond_a = a[i];
-                beyond_r = rmin[i];
+                beyond_r = r;
                 beyond_at = in_place ? (uintptr_t)(a + i) : 0;
             }
         }
