@@ -812,6 +812,9 @@ fast_geometry_common(ptrdiff_t n, const double *const in[HERTZ_NGEOMETRY], stage
     double cya[HERTZ_BLOCK];
     for (ptrdiff_t i = 0; i < n; ++i) { /* vectorised */
         double angle = ANGLE[i];
+        if (!aligned) { /* first: the long chain, the tests beside it */
+            sin2_cos2(fabs(angle) <= FAST_ANGLE ? angle : 0.0, &ssa[i], &cca[i]);
+        }
         double a1x = fabs(R1X[i]), a1y = fabs(R1Y[i]), a2x = fabs(R2X[i]), a2y = fabs(R2Y[i]);
         /* ok = 0 where the element leaves the common case (NaN included): the
          * tests are ANDed as truth values (compares and ANDs of masks on vectors,
@@ -828,9 +831,6 @@ fast_geometry_common(ptrdiff_t n, const double *const in[HERTZ_NGEOMETRY], stage
                  & ((a2y <= hi) | (a2y == INFINITY)) & (fabs(angle) <= FAST_ANGLE);
         }
         oka[i] = ok ? 1.0 : 0.0;
-        if (!aligned) {
-            sin2_cos2(fabs(angle) <= FAST_ANGLE ? angle : 0.0, &ssa[i], &cca[i]);
-        }
     }
     for (ptrdiff_t i = 0; i < n; ++i) { /* vectorised */
         double r1x = R1X[i], r1y = R1Y[i], r2x = R2X[i], r2y = R2Y[i];
