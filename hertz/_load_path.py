@@ -730,7 +730,7 @@ class LoadPathSpring:
     (hertz/_load_path_kernel.c: the numpy algorithm it replaced, bit for bit, one
     contact at a time), after numpy's cbrt of the normal forces; each piece is popped
     at most once after it was pushed, so the cost per step does not grow with the
-    history.  benchmarks/dem_laws.py measures it at N = 1e6: about 1.9x one scipy
+    history.  benchmarks/dem_laws.py measures it at N = 1e6: about 1.8x one scipy
     ellipk + ellipe pass per contact (it was 18x in numpy), near
     :class:`hertz.TangentialSpring`; one contact alone, about 0.011 ms a step (the
     Python call and its input checks).
