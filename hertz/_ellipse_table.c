@@ -52,9 +52,9 @@ table_poly(const double *c, double z)
     return c[0] + (c[1] + z * r);
 }
 
-/* lambda, K, E of one alpha in [1, 2^TABLE_BINADES). */
+/* The row of alpha (in [1, 2^TABLE_BINADES)) in the table and its z. */
 HERTZ_INLINE void
-table_one(double a, double *lam, double *K, double *E)
+table_setup(double a, const double **row, double *z)
 {
     uint64_t bits;
     memcpy(&bits, &a, sizeof bits);
@@ -64,8 +64,17 @@ table_one(double a, double *lam, double *K, double *E)
     double f;
     memcpy(&f, &fbits, sizeof f);
     double k = (double)(piece & ((1u << TABLE_SPLIT_BITS) - 1));
-    double z = Z_SCALE * f - (Z_SCALE + 2.0 * k + 1.0);
-    const double *row = &ELLIPSE_TABLE[piece][0][0];
+    *z = Z_SCALE * f - (Z_SCALE + 2.0 * k + 1.0);
+    *row = &ELLIPSE_TABLE[piece][0][0];
+}
+
+/* lambda, K, E of one alpha in [1, 2^TABLE_BINADES). */
+HERTZ_INLINE void
+table_one(double a, double *lam, double *K, double *E)
+{
+    const double *row;
+    double z;
+    table_setup(a, &row, &z);
     double l = table_poly(row, z);
     *lam = a == 1.0 ? 1.0 : (l > 1.0 ? l : 1.0);
     *K = a == 1.0 ? PI_2 : table_poly(row + TABLE_STRIDE, z);
@@ -81,20 +90,6 @@ table_one(double a, double *lam, double *K, double *E)
 #if defined(__GNUC__) || defined(__clang__)
 #define HAVE_PAIR_TABLE 1
 typedef double hertz_v2d __attribute__((vector_size(16)));
-
-HERTZ_INLINE void
-table_setup(double a, const double **row, double *z)
-{
-    uint64_t bits;
-    memcpy(&bits, &a, sizeof bits);
-    uint64_t piece = (bits >> (52 - TABLE_SPLIT_BITS)) - ((uint64_t)1023 << TABLE_SPLIT_BITS);
-    uint64_t fbits = (bits & 0x000FFFFFFFFFFFFFull) | 0x3FF0000000000000ull;
-    double f;
-    memcpy(&f, &fbits, sizeof f);
-    double k = (double)(piece & ((1u << TABLE_SPLIT_BITS) - 1));
-    *z = Z_SCALE * f - (Z_SCALE + 2.0 * k + 1.0);
-    *row = &ELLIPSE_TABLE[piece][0][0];
-}
 
 /* table_poly of rows a and b (lanes 0 and 1) at z. */
 HERTZ_INLINE hertz_v2d

@@ -25,41 +25,10 @@ def _piece_integral(x0, x1, c0, c2):
 
 
 class _SpringStacks:
-    """The spring bed of the module docstring for N contacts, each a stack of pieces
-    ordered by x, advanced by displacement at a cost per step that does not grow with
-    the history.
-
-    Contact i holds n[i] pieces; piece j covers [E[i, j], E[i, j + 1]] (the last one up
-    to the contact's size alpha[i]) and carries u = (delta[i] - D[i, j]) + B[i, j] x^2,
-    delta[i] the scaled displacement since the contact last slid as a whole.  A step
-    moves every spring in contact by d_delta at once by moving delta alone; what
-    changes piece by piece is at the top of the stack only, because the springs that
-    slide in a step are always an outer interval [c, a] (module docstring) and the
-    springs that enter or leave are at the edge:
-
-    * leaving (a falls): pieces that start beyond the new a are popped;
-    * sliding: pieces whose inner edge slides are popped, the piece holding c is cut
-      at c, and one piece on the limit, u = +-(a^2 - x^2), is pushed from c;
-    * entering (a rises): one piece is pushed from the old a (the springs that enter
-      during the step, u = d_delta (a1^2 - x^2) / (a1^2 - a0^2), or on the limit when
-      |d_delta| > a1^2 - a0^2);
-    * a piece equal to the top one is merged with it.
-
-    F[i, j] is the integral of (-D + B x^2) over the pieces below j, so that the force
-    Q / (mu P_ref) = (3/2) int_0^a u dx is read from the top piece alone.  When a
-    contact slides as a whole its stack is one piece and delta starts again at 0;
-    delta is also re-based whenever it exceeds 4 a^2 (the pieces' D and F shifted, a
-    pass over that contact's pieces), so that delta - D never loses digits to a large
-    delta.
-
-    Memory: the pieces of distinct profile that no later slip has wiped out: the
-    pieces of springs that entered while P rose with the edge sticking (one per such
-    step with its own ratio d_delta / d(a^2); none while the tangential displacement
-    stands still) and at most one cut piece per reversal remembered; the arrays are as
-    wide as the largest count over the contacts (doubled when a push needs more).
-    Cost per step: a fixed number of passes over the contacts plus passes over only
-    the contacts that pop pieces, each piece popped once after it was pushed (amortised
-    constant).
+    """The spring bed for N contacts in numpy arrays: contact i holds count[i] pieces
+    (inner edges E, coefficients D, B, the force below F), the algorithm of
+    hertz._load_path._SpringStacks (whose docstring describes it), advanced in blocks
+    of contacts by passes over only the contacts that pop pieces.
     """
 
     BLOCK = 16384  # contacts advanced together: the temporaries stay in cache
