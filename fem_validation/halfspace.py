@@ -22,8 +22,10 @@ def cerruti_settlement(force: float, E: float, nu: float, depth: float) -> float
     """Displacement along a tangential point force of a half-space, on the axis at ``depth``.
 
     u = Q (3 - 2 nu) / (8 pi G depth), G = E / (2 (1 + nu)) (Cerruti's solution,
-    x = y = 0, z = depth): what a block clamped at that depth does not show, to be
-    added to its tangential displacement.  Q [N], E [Pa], depth [m].
+    x = y = 0, z = depth): what a block clamped at that depth would not show if it were
+    otherwise a half-space.  A block with free sides is softer than a half-space, so
+    adding this overstates its compliance (docs/explanation/fem-friction.md: 0.3% at
+    blocks 160 a deep).  Q [N], E [Pa], depth [m].
     """
     if not depth > 0:
         raise ValueError(f"depth must be > 0, got {depth!r}")
