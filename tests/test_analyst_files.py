@@ -24,6 +24,7 @@ from types import SimpleNamespace
 import numpy as np
 import pytest
 from fem_extra import require
+from scene_files import ball_on_plane
 
 require("skfem", "meshio", "matplotlib")
 
@@ -34,19 +35,7 @@ DATA = Path(__file__).parent / "data" / "calculix" / "single_material"
 CCX = shutil.which("ccx")
 
 #: The fixture's scene: steel ball R 10 mm on a steel half-space (SI).
-BALL_SCENE = """name = "steel ball R 10 mm on a steel block (analyst's run)"
-load = 1000.0
-[body1]
-Rx = 0.01
-Ry = 0.01
-E = 210e9
-nu = 0.3
-[body2]
-Rx = "inf"
-Ry = "inf"
-E = 210e9
-nu = 0.3
-"""
+BALL_SCENE = ball_on_plane("steel ball R 10 mm on a steel block (analyst's run)", 1000.0)
 
 
 @pytest.fixture(scope="module")

@@ -16,6 +16,7 @@ from pathlib import Path
 
 import pytest
 from fem_extra import require
+from scene_files import ball_on_plane
 
 import fem_validation
 import fem_validation.__main__ as fv_dispatch
@@ -28,19 +29,7 @@ from fem_validation.cli import grade as grade_cli
 
 ROOT = Path(__file__).resolve().parents[1]
 
-SPHERE = """name = "ball"
-load = 100.0
-[body1]
-Rx = 0.01
-Ry = 0.01
-E = 210e9
-nu = 0.3
-[body2]
-Rx = "inf"
-Ry = "inf"
-E = 210e9
-nu = 0.3
-"""
+SPHERE = ball_on_plane("ball", 100.0)
 
 #: Runs ``python -m fem_validation`` with the fem extra's solver packages hidden, as a
 #: ``pip install hertz-contact`` without ``[fem]`` has them (None in sys.modules: the

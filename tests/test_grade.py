@@ -16,6 +16,7 @@ from pathlib import Path
 
 import numpy as np
 import pytest
+from scene_files import ball_on_plane
 
 meshio = pytest.importorskip("meshio", reason="needs the fem extra (meshio)")
 pytest.importorskip("scipy")
@@ -34,19 +35,7 @@ from fem_validation.scenes import Scene, crossed_30deg, equal_steel, scene_from_
 
 ROOT = Path(__file__).resolve().parents[1]
 STEEL = {"E": 210e9, "nu": 0.3}
-BALL_TOML = """name = "ball on plane"
-load = 100.0
-[body1]
-Rx = 0.01
-Ry = 0.01
-E = 210e9
-nu = 0.3
-[body2]
-Rx = "inf"
-Ry = "inf"
-E = 210e9
-nu = 0.3
-"""
+BALL_TOML = ball_on_plane("ball on plane", 100.0)
 
 
 def exact_pressure(c, x, y):

@@ -10,6 +10,7 @@ from pathlib import Path
 import numpy as np
 import pytest
 from fem_extra import require
+from scene_files import ball_on_plane
 
 require("matplotlib")
 
@@ -67,19 +68,7 @@ def test_bad_series(h, values, message):
 
 # --- the command --------------------------------------------------------------------------
 
-SCENE = """name = "ball R 10 mm on a plane"
-load = 1000.0
-[body1]
-Rx = 0.01
-Ry = 0.01
-E = 210e9
-nu = 0.3
-[body2]
-Rx = "inf"
-Ry = "inf"
-E = 210e9
-nu = 0.3
-"""
+SCENE = ball_on_plane("ball R 10 mm on a plane", 1000.0)
 K = 40.0  # the synthetic error's constant: a and p0 off by K (h/a)^2 ... [-]
 
 

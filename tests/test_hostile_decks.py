@@ -24,6 +24,8 @@ import hertz
 pytest.importorskip("gmsh")
 pytest.importorskip("skfem")
 
+from scene_files import ball_on_plane
+
 from fem_validation.decks.inp import write_inp  # noqa: E402
 from fem_validation.decks.meshes import write_mesh, write_problem  # noqa: E402
 from fem_validation.decks.model import (  # noqa: E402
@@ -189,19 +191,7 @@ def test_hostile_name_meshes_stay_valid(ball_model, tmp_path):
 
 # --- audit finding 16: options that wrote an unrunnable or meaningless deck ----------------
 
-BALL_TOML = """name = "ball"
-load = 100.0
-[body1]
-Rx = 0.01
-Ry = 0.01
-E = 210e9
-nu = 0.3
-[body2]
-Rx = "inf"
-Ry = "inf"
-E = 210e9
-nu = 0.3
-"""
+BALL_TOML = ball_on_plane("ball", 100.0)
 
 
 @pytest.mark.parametrize("options, option, message", [

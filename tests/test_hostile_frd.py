@@ -17,6 +17,7 @@ from pathlib import Path
 
 import numpy as np
 import pytest
+from scene_files import ball_on_plane
 
 from fem_validation.memory import peak_mb, reset_peak
 from fem_validation.readers import read_result
@@ -31,19 +32,8 @@ ALL = [*ASCII, "two_cubes_binary.frd"]
 #: A sphere on a plane whose Hertz contact (a = 1.42 mm at 4378 N, steel on steel) is about
 #: the size of tet_cubes' interface read as a quarter model (2 mm square): near enough for
 #: the grader to grade it (a flat punch, so its pressure checks fail) instead of refusing it.
-CUBES_SCENE = """name = "sphere R 100 mm on a plane, sized to the cubes' interface"
-load = 4378.0
-[body1]
-Rx = 0.1
-Ry = 0.1
-E = 210e9
-nu = 0.3
-[body2]
-Rx = "inf"
-Ry = "inf"
-E = 210e9
-nu = 0.3
-"""
+CUBES_SCENE = ball_on_plane("sphere R 100 mm on a plane, sized to the cubes' interface",
+                            4378.0, radius=0.1)
 
 #: problem.json as fem_validation.decks writes it, for the deck-run layout (run/hertz.frd).
 PROBLEM = {"units": {"length": "mm", "force": "N", "stress": "MPa"},
